@@ -1,0 +1,14 @@
+# Warning and sanitizer settings shared by every target of the project.
+add_library(mm_project_options INTERFACE)
+target_compile_options(mm_project_options INTERFACE
+  -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor -Wold-style-cast
+  -Wcast-align -Woverloaded-virtual -Wnull-dereference -Wdouble-promotion
+  -Wformat=2 -Wimplicit-fallthrough -Wmissing-declarations)
+if(MM_WARNINGS_AS_ERRORS)
+  target_compile_options(mm_project_options INTERFACE -Werror)
+endif()
+if(MM_SANITIZE)
+  target_compile_options(mm_project_options INTERFACE
+    -fsanitize=${MM_SANITIZE} -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(mm_project_options INTERFACE -fsanitize=${MM_SANITIZE})
+endif()

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "mm/geometry.hpp"
+
+namespace mm {
+
+/// Rectangle centred on the reference point, `length` along the heading, `width` across [m] (spec §2).
+struct rectangle {
+  double length = 4.5;
+  double width = 1.8;
+};
+
+/// Disc centred on the reference point (pedestrians; spec §2 default radius 0.35 m).
+struct disc {
+  double radius = 0.35;
+};
+
+/// Convex polygon in the body frame (x forward, y left) [m], either orientation.
+/// At least 3 and at most `max_polygon_vertices` vertices.
+struct convex_polygon {
+  std::vector<vec2> vertices;
+};
+
+/// The shape a road user occupies, relative to its reference point and heading.
+using footprint = std::variant<rectangle, disc, convex_polygon>;
+
+inline constexpr std::size_t max_polygon_vertices = 16;
+
+/// A footprint placed in the world: the Minkowski sum of a convex core (a single point when
+/// `vertex_count == 1`, else a convex polygon) and a disc of `radius` [m].
+/// Rectangles and polygons have radius 0; a disc is a point core with its radius.
+struct placed_footprint {
+  std::array<vec2, max_polygon_vertices> vertices{};
+  std::size_t vertex_count = 0;
+  double radius = 0.0;
+};
+
+/// `shape` placed at `where`.
+placed_footprint place(const footprint& shape, const pose& where);
+
+/// Radius of the smallest disc about the reference point that contains the footprint [m].
+double bounding_radius(const footprint& shape);
+
+/// Smallest extent of the footprint [m]: rectangle width, disc diameter, polygon minimal width.
+/// Bounds the collision time step so footprints cannot pass through each other (spec §5).
+double smallest_dimension(const footprint& shape);
+
+/// Why `shape` is not a valid footprint (non-finite or non-positive sizes, a polygon that is not
+/// convex or has fewer than 3 or more than `max_polygon_vertices` vertices), or nothing.
+std::optional<std::string> footprint_error(const footprint& shape);
+
+/// True when the footprints overlap after inflating `b` by `margin` ≥ 0 [m] (spec §2): the
+/// interiors intersect, or the gap between them is smaller than `margin`. Touching is not overlap.
+bool overlaps(const placed_footprint& a, const placed_footprint& b, double margin = 0.0);
+
+/// Euclidean distance between the footprints [m]; 0 when they overlap.
+double gap_distance(const placed_footprint& a, const placed_footprint& b);
+
+}  // namespace mm

@@ -1,0 +1,81 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mm/forecast.hpp"
+#include "mm/maneuver.hpp"
+#include "mm/maneuver_choice.hpp"
+#include "mm/planner_config.hpp"
+
+namespace mm {
+
+/// One planning step: the ego, what it wants to do, what it has observed.
+struct plan_input {
+  double time = 0.0;                      ///< planning time [s]; no observation may be later
+  ego_state ego;
+  maneuver nominal;                       ///< u_nom: path following and speed keeping (spec §8); clamped to the limits
+  std::vector<obstacle_track> obstacles;
+  planner_config config;
+};
+
+enum class plan_status : std::uint8_t { ok, invalid_input };
+
+/// How the planner sees one obstacle.
+struct obstacle_assessment {
+  std::uint32_t id = 0;
+  bool relevant = false;           ///< false: too far to reach within T_c, so it cost nothing (spec §9)
+  motion_estimate motion;
+  double time_to_collision = 0.0;  ///< TTC with this obstacle [s], ∞ for none (spec §6)
+  std::size_t forecast_index = 0;  ///< the forecast time this obstacle was given (spec §9)
+};
+
+/// The sampled maneuvers of one step and their safety, to draw or check the sets (spec §3, §5).
+struct sample_snapshot {
+  std::vector<maneuver> maneuvers;
+  std::vector<family> families;
+  std::vector<vec2> end_points;                     ///< displacements, world frame [m]
+  std::vector<double> area_weights;                 ///< [m²]; 0 on the nominal-curvature columns
+  std::vector<std::uint8_t> on_nominal_curvature;   ///< 1 on the nominal-curvature columns
+  std::vector<std::vector<std::uint8_t>> safe_by_forecast;  ///< [i][m]: safe with every obstacle at τ_i
+  std::vector<std::uint8_t> safe_selected;          ///< [m]: safe under the selected forecast times
+};
+
+/// Everything one planning step computes (spec §6–§9).
+struct plan_result {
+  plan_status status = plan_status::ok;
+  std::string error;                       ///< what was wrong with the input, when not ok
+
+  maneuver command;                        ///< the chosen u: finite and within the limits
+  planning_mode mode = planning_mode::nominal;
+  family selected_family = family::brake;  ///< family chosen by the MI comparison at τ̄ (spec §7)
+  double forecast_time = 0.0;              ///< τ̄ [s]: of the most urgent obstacle when there are several
+  std::size_t forecast_index = 0;          ///< ī
+  double mi_brake_selected = 1.0;          ///< MI− under the selected forecast times
+  double mi_accelerate_selected = 1.0;     ///< MI+ under the selected forecast times
+
+  /// The column of the Maneuverability Map at this time (spec §6): every obstacle forecast with τ_i.
+  std::vector<double> forecast_times;
+  std::vector<double> mi_brake;
+  std::vector<double> mi_accelerate;
+  std::vector<std::uint8_t> excluded;      ///< τ_i > TTC
+
+  double time_to_collision = 0.0;          ///< TTC [s], the earliest over all obstacles; ∞ for none
+  double collision_time_step = 0.0;        ///< time step of the collision tests [s]
+  std::vector<obstacle_assessment> obstacles;  ///< in input order
+  std::optional<sample_snapshot> samples;  ///< when `config.record_samples`
+
+  bool ok() const { return status == plan_status::ok; }
+};
+
+/// Why `input` cannot be planned on — the field, its value and what was expected — or nothing.
+std::optional<std::string> validation_error(const plan_input& input);
+
+/// One planning step with Maneuverability Maps (spec §3–§9): the fast path.
+/// Pure: the same input gives the same result. Thread-safe.
+plan_result plan(const plan_input& input);
+
+}  // namespace mm

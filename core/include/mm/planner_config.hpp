@@ -1,0 +1,38 @@
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "mm/assignment_search.hpp"
+#include "mm/displacement_set.hpp"
+#include "mm/forecast_policy.hpp"
+#include "mm/maneuver_choice.hpp"
+
+namespace mm {
+
+/// Everything the planner can be told, with the defaults of the spec.
+struct planner_config {
+  double displacement_horizon = 1.0;  ///< T_h [Δt^h, s] (spec §3)
+  double collision_window = 3.0;      ///< T_c [s] ≥ T_h and ≥ the largest forecast time (spec §5)
+  double forecast_step = 0.125;       ///< Δτ [s] (spec §4)
+  std::size_t forecast_count = 17;    ///< τ_i = i·Δτ, i = 0..forecast_count−1 (spec §4)
+  double history_window = 0.5;        ///< H [s]: observations used to estimate v_j, ω_j (spec §4)
+  double safety_margin = 0.0;         ///< inflation of every obstacle [m] (spec §2)
+  forecast_policy policy;             ///< ADJ or constant τ (spec §7)
+  effort_weights effort;              ///< w_lon, w_lat of J (spec §8)
+  bool urgent_steering = false;       ///< spec §8.3, the paper's case-study setting
+  /// Samples per family. The default meets spec §11's 0.02 bound against the reference; see
+  /// docs/method.md for the measurement.
+  sampling_resolution resolution;
+  /// Upper bound on the collision time step [s]; the step is also kept below the tunneling bound
+  /// of spec §5 for every relevant obstacle.
+  double max_time_step = 0.05;
+  assignment_search_kind assignment_search = assignment_search_kind::coordinate_ascent;  ///< spec §9
+  std::size_t max_exhaustive_assignments = 1'000'000;  ///< refuse an exhaustive search larger than this
+  bool record_samples = false;  ///< fill `plan_result::samples` (for drawing the sets)
+};
+
+/// The forecast grid τ_i = i·Δτ [s] (spec §4).
+std::vector<double> forecast_times(const planner_config& config);
+
+}  // namespace mm

@@ -1,0 +1,51 @@
+#pragma once
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace mm {
+
+/// A set of sample indices (a fixed-size bitset), e.g. the colliding maneuvers [CSS] of a sample grid.
+class sample_mask {
+ public:
+  sample_mask() = default;
+  explicit sample_mask(std::size_t size) : size_(size), words_((size + 63) / 64, 0) {}
+
+  std::size_t size() const { return size_; }
+  bool test(std::size_t i) const { return (words_[i / 64] >> (i % 64)) & 1U; }
+  void set(std::size_t i) { words_[i / 64] |= std::uint64_t{1} << (i % 64); }
+  void reset(std::size_t i) { words_[i / 64] &= ~(std::uint64_t{1} << (i % 64)); }
+
+  /// Number of members.
+  std::size_t count() const;
+  bool none() const;
+  /// True when every index in [begin, end) is a member.
+  bool all_in(std::size_t begin, std::size_t end) const;
+
+  sample_mask& operator|=(const sample_mask& other);
+  friend sample_mask operator|(sample_mask a, const sample_mask& b) { return a |= b; }
+  friend bool operator==(const sample_mask&, const sample_mask&) = default;
+
+  std::span<const std::uint64_t> words() const { return words_; }
+
+  /// Calls `visit(i)` for every member i, in increasing order.
+  template <class Visit>
+  void for_each(Visit&& visit) const {
+    for (std::size_t w = 0; w < words_.size(); ++w) {
+      std::uint64_t bits = words_[w];
+      while (bits != 0) {
+        visit(w * 64 + static_cast<std::size_t>(std::countr_zero(bits)));
+        bits &= bits - 1;
+      }
+    }
+  }
+
+ private:
+  std::size_t size_ = 0;
+  std::vector<std::uint64_t> words_;
+};
+
+}  // namespace mm

@@ -1,0 +1,72 @@
+#include "mm/collision.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mm {
+namespace {
+
+bool overlaps_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle,
+                 double forecast_time, double t, const collision_window& window) {
+  const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
+  const pose obstacle_pose = forecast_pose(obstacle.motion, forecast_time, t);
+  return overlaps(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose), window.margin);
+}
+
+}  // namespace
+
+std::vector<double> sample_times(double duration, double step) {
+  const auto steps = static_cast<std::size_t>(std::ceil(duration / step - 1e-9));
+  std::vector<double> times(steps + 1);
+  for (std::size_t k = 0; k <= steps; ++k) times[k] = std::min(duration, static_cast<double>(k) * step);
+  return times;
+}
+
+double tunneling_time_step(const ego_state& ego, const forecast_obstacle& obstacle,
+                           const collision_window& window) {
+  const double ego_top_speed =
+      speed_after(ego.speed, ego.limits.max_acceleration, window.horizon, ego.limits.speed_cap);
+  const double relative_speed = ego_top_speed + obstacle.motion.speed;
+  const double dimension = std::min(smallest_dimension(ego.shape), smallest_dimension(obstacle.shape));
+  if (relative_speed <= 0.0) return window.duration;
+  return dimension / relative_speed;
+}
+
+double first_collision_time(const ego_state& ego, const maneuver& u,
+                            std::span<const forecast_obstacle> obstacles,
+                            std::span<const double> forecast_times, const collision_window& window) {
+  for (const double t : sample_times(window.duration, window.time_step)) {
+    for (std::size_t j = 0; j < obstacles.size(); ++j) {
+      if (overlaps_at(ego, u, obstacles[j], forecast_times[j], t, window)) return t;
+    }
+  }
+  return no_collision;
+}
+
+bool maneuver_collides(const ego_state& ego, const maneuver& u,
+                       std::span<const forecast_obstacle> obstacles,
+                       std::span<const double> forecast_times, const collision_window& window) {
+  return first_collision_time(ego, u, obstacles, forecast_times, window) != no_collision;
+}
+
+double time_to_collision(const ego_state& ego, const maneuver& nominal,
+                         const forecast_obstacle& obstacle, const collision_window& window) {
+  const double whole_window = window.duration;
+  double previous = 0.0;
+  for (const double t : sample_times(window.duration, window.time_step)) {
+    if (overlaps_at(ego, nominal, obstacle, whole_window, t, window)) {
+      if (t == 0.0) return 0.0;
+      double free = previous;
+      double hit = t;
+      while (hit - free > 1e-4) {
+        const double mid = 0.5 * (free + hit);
+        (overlaps_at(ego, nominal, obstacle, whole_window, mid, window) ? hit : free) = mid;
+      }
+      return hit;
+    }
+    previous = t;
+  }
+  return no_collision;
+}
+
+}  // namespace mm

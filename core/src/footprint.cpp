@@ -1,0 +1,205 @@
+#include "mm/footprint.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace mm {
+namespace {
+
+struct interval {
+  double lo;
+  double hi;
+};
+
+interval project(const placed_footprint& f, vec2 axis) {
+  interval result{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    const double p = dot(f.vertices[i], axis);
+    result.lo = std::min(result.lo, p);
+    result.hi = std::max(result.hi, p);
+  }
+  return result;
+}
+
+/// True when some edge normal of `f` separates the cores of `f` and `g` (touching counts as separated).
+bool has_separating_edge(const placed_footprint& f, const placed_footprint& g) {
+  if (f.vertex_count < 3) return false;
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    const vec2 edge = f.vertices[(i + 1) % f.vertex_count] - f.vertices[i];
+    const vec2 axis{-edge.y, edge.x};
+    const interval pf = project(f, axis);
+    const interval pg = project(g, axis);
+    if (pf.hi <= pg.lo || pg.hi <= pf.lo) return true;
+  }
+  return false;
+}
+
+/// True when the point `p` lies strictly inside the convex polygon core of `f`.
+bool strictly_inside(const placed_footprint& f, vec2 p) {
+  if (f.vertex_count < 3) return false;
+  int sign = 0;
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    const vec2 a = f.vertices[i];
+    const vec2 b = f.vertices[(i + 1) % f.vertex_count];
+    const double c = cross(b - a, p - a);
+    if (c == 0.0) return false;
+    const int s = c > 0.0 ? 1 : -1;
+    if (sign == 0) sign = s;
+    if (s != sign) return false;
+  }
+  return true;
+}
+
+/// True when the interiors of the two cores intersect.
+bool cores_intersect(const placed_footprint& a, const placed_footprint& b) {
+  if (a.vertex_count == 1 && b.vertex_count == 1) return false;
+  if (a.vertex_count == 1) return strictly_inside(b, a.vertices[0]);
+  if (b.vertex_count == 1) return strictly_inside(a, b.vertices[0]);
+  return !has_separating_edge(a, b) && !has_separating_edge(b, a);
+}
+
+double squared_distance_to_segment(vec2 p, vec2 a, vec2 b) {
+  const vec2 ab = b - a;
+  const double len2 = squared_norm(ab);
+  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
+  return squared_norm(p - (a + t * ab));
+}
+
+/// Smallest squared distance from the vertices of `f` to the boundary of the core of `g`.
+double squared_vertex_to_boundary(const placed_footprint& f, const placed_footprint& g) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    if (g.vertex_count == 1) {
+      best = std::min(best, squared_norm(f.vertices[i] - g.vertices[0]));
+      continue;
+    }
+    for (std::size_t j = 0; j < g.vertex_count; ++j) {
+      best = std::min(best, squared_distance_to_segment(f.vertices[i], g.vertices[j],
+                                                        g.vertices[(j + 1) % g.vertex_count]));
+    }
+  }
+  return best;
+}
+
+/// Distance between two cores whose interiors do not intersect.
+double separated_core_distance(const placed_footprint& a, const placed_footprint& b) {
+  return std::sqrt(std::min(squared_vertex_to_boundary(a, b), squared_vertex_to_boundary(b, a)));
+}
+
+double polygon_width(const std::vector<vec2>& v) {
+  double width = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const vec2 edge = v[(i + 1) % v.size()] - v[i];
+    const double len = norm(edge);
+    if (len == 0.0) continue;
+    double extent = 0.0;
+    for (const vec2& p : v) extent = std::max(extent, std::abs(cross(edge, p - v[i])) / len);
+    width = std::min(width, extent);
+  }
+  return width;
+}
+
+}  // namespace
+
+placed_footprint place(const footprint& shape, const pose& where) {
+  placed_footprint placed;
+  const double c = std::cos(where.heading);
+  const double s = std::sin(where.heading);
+  const auto put = [&](const std::vector<vec2>& body) {
+    placed.vertex_count = std::min(body.size(), max_polygon_vertices);
+    for (std::size_t i = 0; i < placed.vertex_count; ++i) {
+      placed.vertices[i] = where.position + rotated(body[i], c, s);
+    }
+  };
+  if (const auto* r = std::get_if<rectangle>(&shape)) {
+    const double hl = r->length / 2.0;
+    const double hw = r->width / 2.0;
+    const vec2 along{c * hl, s * hl};
+    const vec2 across{-s * hw, c * hw};
+    placed.vertex_count = 4;
+    placed.vertices[0] = where.position + along + across;
+    placed.vertices[1] = where.position - along + across;
+    placed.vertices[2] = where.position - along - across;
+    placed.vertices[3] = where.position + along - across;
+  } else if (const auto* d = std::get_if<disc>(&shape)) {
+    placed.vertex_count = 1;
+    placed.vertices[0] = where.position;
+    placed.radius = d->radius;
+  } else {
+    put(std::get<convex_polygon>(shape).vertices);
+  }
+  return placed;
+}
+
+double bounding_radius(const footprint& shape) {
+  if (const auto* r = std::get_if<rectangle>(&shape)) return std::hypot(r->length, r->width) / 2.0;
+  if (const auto* d = std::get_if<disc>(&shape)) return d->radius;
+  double radius = 0.0;
+  for (const vec2& v : std::get<convex_polygon>(shape).vertices) radius = std::max(radius, norm(v));
+  return radius;
+}
+
+double smallest_dimension(const footprint& shape) {
+  if (const auto* r = std::get_if<rectangle>(&shape)) return std::min(r->length, r->width);
+  if (const auto* d = std::get_if<disc>(&shape)) return 2.0 * d->radius;
+  return polygon_width(std::get<convex_polygon>(shape).vertices);
+}
+
+std::optional<std::string> footprint_error(const footprint& shape) {
+  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (const auto* r = std::get_if<rectangle>(&shape)) {
+    if (!positive(r->length)) return "rectangle length must be a positive finite number of metres, got " + std::to_string(r->length);
+    if (!positive(r->width)) return "rectangle width must be a positive finite number of metres, got " + std::to_string(r->width);
+    return std::nullopt;
+  }
+  if (const auto* d = std::get_if<disc>(&shape)) {
+    if (!positive(d->radius)) return "disc radius must be a positive finite number of metres, got " + std::to_string(d->radius);
+    return std::nullopt;
+  }
+  const auto& v = std::get<convex_polygon>(shape).vertices;
+  if (v.size() < 3 || v.size() > max_polygon_vertices) {
+    return "polygon must have 3 to " + std::to_string(max_polygon_vertices) + " vertices, got " +
+           std::to_string(v.size());
+  }
+  for (const vec2& p : v) {
+    if (!std::isfinite(p.x) || !std::isfinite(p.y)) return std::string("polygon vertex is not finite");
+  }
+  int sign = 0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const vec2 a = v[i];
+    const vec2 b = v[(i + 1) % v.size()];
+    const vec2 c = v[(i + 2) % v.size()];
+    const double turn = cross(b - a, c - b);
+    if (turn == 0.0) continue;
+    const int s = turn > 0.0 ? 1 : -1;
+    if (sign == 0) sign = s;
+    if (s != sign) return "polygon is not convex (turn direction changes at vertex " + std::to_string((i + 1) % v.size()) + ")";
+  }
+  if (sign == 0) return std::string("polygon has zero area (all vertices on one line)");
+  double turning = 0.0;
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const vec2 e0 = v[(i + 1) % v.size()] - v[i];
+    const vec2 e1 = v[(i + 2) % v.size()] - v[(i + 1) % v.size()];
+    turning += std::atan2(cross(e0, e1), dot(e0, e1));
+  }
+  if (std::abs(std::abs(turning) - 2.0 * std::numbers::pi) > 1e-6) {
+    return std::string("polygon is self-intersecting (its edges turn more than once around)");
+  }
+  return std::nullopt;
+}
+
+bool overlaps(const placed_footprint& a, const placed_footprint& b, double margin) {
+  if (cores_intersect(a, b)) return true;
+  const double reach = a.radius + b.radius + margin;
+  if (reach <= 0.0) return false;
+  const double squared_reach = reach * reach;
+  return std::min(squared_vertex_to_boundary(a, b), squared_vertex_to_boundary(b, a)) < squared_reach;
+}
+
+double gap_distance(const placed_footprint& a, const placed_footprint& b) {
+  if (cores_intersect(a, b)) return 0.0;
+  return std::max(0.0, separated_core_distance(a, b) - a.radius - b.radius);
+}
+
+}  // namespace mm

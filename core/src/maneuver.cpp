@@ -1,0 +1,66 @@
+#include "mm/maneuver.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+namespace mm {
+
+double max_curvature(double speed, const ego_limits& limits) {
+  if (!limits.steering) return 0.0;
+  const double geometric = 1.0 / limits.min_turning_radius;
+  const double v2 = speed * speed;
+  if (v2 * geometric <= limits.max_lateral_acceleration) return geometric;
+  return limits.max_lateral_acceleration / v2;
+}
+
+double speed_after(double initial_speed, double acceleration, double t, double speed_cap) {
+  return std::clamp(initial_speed + acceleration * t, 0.0, speed_cap);
+}
+
+double travelled_distance(double initial_speed, double acceleration, double t, double speed_cap) {
+  if (t <= 0.0) return 0.0;
+  if (acceleration == 0.0) return std::clamp(initial_speed, 0.0, speed_cap) * t;
+  // v0 + a·τ crosses 0 and v_cap at these times; between consecutive break points the clamped
+  // speed is linear, so the trapezoid rule is exact on each piece.
+  std::array<double, 4> breaks{0.0, -initial_speed / acceleration,
+                               (speed_cap - initial_speed) / acceleration, t};
+  for (double& b : breaks) b = std::clamp(b, 0.0, t);
+  std::sort(breaks.begin(), breaks.end());
+  double distance = 0.0;
+  for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
+    const double t0 = breaks[i];
+    const double t1 = breaks[i + 1];
+    if (t1 <= t0) continue;
+    distance += 0.5 * (speed_after(initial_speed, acceleration, t0, speed_cap) +
+                       speed_after(initial_speed, acceleration, t1, speed_cap)) *
+                (t1 - t0);
+  }
+  return distance;
+}
+
+vec2 arc_point(double curvature, double arc_length) {
+  const double turn = curvature * arc_length;
+  return {arc_length * sinc(turn), arc_length * versine_ratio(turn)};
+}
+
+pose maneuver_pose(const pose& start, double initial_speed, const maneuver& u, double t,
+                   double horizon, double speed_cap) {
+  const double arc_time = std::min(t, horizon);
+  const double s = travelled_distance(initial_speed, u.acceleration, arc_time, speed_cap);
+  vec2 local = arc_point(u.curvature, s);
+  const double local_heading = u.curvature * s;
+  if (t > horizon) {
+    const double straight = speed_after(initial_speed, u.acceleration, horizon, speed_cap) * (t - horizon);
+    local = local + straight * unit_vector(local_heading);
+  }
+  return {to_world(start, local), start.heading + local_heading};
+}
+
+maneuver clamp_to_limits(const maneuver& u, double initial_speed, const ego_limits& limits) {
+  const double kappa_max = max_curvature(initial_speed, limits);
+  return {std::clamp(u.acceleration, -limits.max_deceleration, limits.max_acceleration),
+          std::clamp(u.curvature, -kappa_max, kappa_max)};
+}
+
+}  // namespace mm

@@ -1,0 +1,18 @@
+#include "mm/planner.hpp"
+
+#include "pipeline.hpp"
+
+namespace mm {
+
+std::vector<double> forecast_times(const planner_config& config) {
+  std::vector<double> taus(config.forecast_count);
+  for (std::size_t i = 0; i < taus.size(); ++i) taus[i] = static_cast<double>(i) * config.forecast_step;
+  return taus;
+}
+
+plan_result plan(const plan_input& input) {
+  return detail::run_pipeline(input, {input.config.resolution, input.config.max_time_step, false,
+                                      input.config.assignment_search});
+}
+
+}  // namespace mm

@@ -1,0 +1,126 @@
+#include <charconv>
+#include <cmath>
+#include <string>
+
+#include "mm/planner.hpp"
+
+namespace mm {
+namespace {
+
+std::string number(double value) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string expected(const std::string& field, double value, const std::string& what) {
+  return field + " = " + number(value) + ": expected " + what;
+}
+
+/// The first problem among `checks`, each a (condition that must hold, field, value, expectation).
+struct checker {
+  std::optional<std::string> error;
+  void require(bool ok, const std::string& field, double value, const std::string& what) {
+    if (!error && !ok) error = expected(field, value, what);
+  }
+  void finite(const std::string& field, double value) { require(std::isfinite(value), field, value, "a finite number"); }
+  void positive(const std::string& field, double value, const std::string& unit) {
+    require(std::isfinite(value) && value > 0.0, field, value, "a positive finite number of " + unit);
+  }
+  void non_negative(const std::string& field, double value, const std::string& unit) {
+    require(std::isfinite(value) && value >= 0.0, field, value, "a finite number ≥ 0 of " + unit);
+  }
+  void pose(const std::string& field, const mm::pose& p) {
+    finite(field + ".position.x", p.position.x);
+    finite(field + ".position.y", p.position.y);
+    finite(field + ".heading", p.heading);
+  }
+  void shape(const std::string& field, const footprint& f) {
+    if (error) return;
+    if (auto why = footprint_error(f)) error = field + ": " + *why;
+  }
+};
+
+}  // namespace
+
+std::optional<std::string> validation_error(const plan_input& in) {
+  checker c;
+  c.finite("time", in.time);
+
+  const ego_limits& l = in.ego.limits;
+  c.positive("ego.limits.max_acceleration", l.max_acceleration, "m/s²");
+  c.positive("ego.limits.max_deceleration", l.max_deceleration, "m/s² (deceleration is given as a positive number)");
+  c.positive("ego.limits.max_lateral_acceleration", l.max_lateral_acceleration, "m/s²");
+  c.positive("ego.limits.min_turning_radius", l.min_turning_radius, "m");
+  c.positive("ego.limits.speed_cap", l.speed_cap, "m/s");
+  c.pose("ego.pose", in.ego.pose);
+  c.non_negative("ego.speed", in.ego.speed, "m/s");
+  c.require(!(in.ego.speed > l.speed_cap), "ego.speed", in.ego.speed,
+            "at most ego.limits.speed_cap = " + number(l.speed_cap) + " m/s");
+  c.shape("ego.shape", in.ego.shape);
+  c.finite("nominal.acceleration", in.nominal.acceleration);
+  c.finite("nominal.curvature", in.nominal.curvature);
+
+  const planner_config& k = in.config;
+  c.positive("config.displacement_horizon", k.displacement_horizon, "seconds");
+  c.positive("config.collision_window", k.collision_window, "seconds");
+  c.require(!(k.collision_window < k.displacement_horizon), "config.collision_window", k.collision_window,
+            "at least config.displacement_horizon = " + number(k.displacement_horizon) + " s");
+  c.positive("config.forecast_step", k.forecast_step, "seconds");
+  c.require(k.forecast_count >= 1, "config.forecast_count", static_cast<double>(k.forecast_count),
+            "at least 1 (the forecast grid is empty)");
+  const double largest_forecast = static_cast<double>(k.forecast_count == 0 ? 0 : k.forecast_count - 1) * k.forecast_step;
+  c.require(!(largest_forecast > k.collision_window + 1e-9), "config.forecast_count", static_cast<double>(k.forecast_count),
+            "a forecast grid within the collision window: the largest forecast time " + number(largest_forecast) +
+                " s exceeds config.collision_window = " + number(k.collision_window) + " s");
+  c.positive("config.history_window", k.history_window, "seconds");
+  c.non_negative("config.safety_margin", k.safety_margin, "metres");
+  c.non_negative("config.effort.longitudinal", k.effort.longitudinal, "s⁴/m²");
+  c.non_negative("config.effort.lateral", k.effort.lateral, "s⁴/m²");
+  c.require(k.resolution.accelerations >= 2 && k.resolution.accelerations <= 2001, "config.resolution.accelerations",
+            static_cast<double>(k.resolution.accelerations), "an integer from 2 to 2001");
+  c.require(k.resolution.curvatures >= 1 && k.resolution.curvatures <= 2001, "config.resolution.curvatures",
+            static_cast<double>(k.resolution.curvatures), "an integer from 1 to 2001");
+  c.positive("config.max_time_step", k.max_time_step, "seconds");
+  c.require(k.max_exhaustive_assignments >= 1, "config.max_exhaustive_assignments",
+            static_cast<double>(k.max_exhaustive_assignments), "at least 1");
+  if (k.policy.kind == forecast_policy_kind::constant) {
+    const double tau = k.policy.constant_forecast_time;
+    c.non_negative("config.policy.constant_forecast_time", tau, "seconds");
+    const double steps = tau / k.forecast_step;
+    c.require(!(std::abs(steps - std::round(steps)) > 1e-6 || tau > largest_forecast + 1e-9),
+              "config.policy.constant_forecast_time", tau,
+              "a forecast time on the grid: a multiple of config.forecast_step = " + number(k.forecast_step) +
+                  " s from 0 to " + number(largest_forecast) + " s");
+  }
+
+  for (std::size_t j = 0; j < in.obstacles.size() && !c.error; ++j) {
+    const obstacle_track& o = in.obstacles[j];
+    const std::string field = "obstacles[" + std::to_string(j) + "] (id " + std::to_string(o.id) + ")";
+    c.shape(field + ".shape", o.shape);
+    const std::size_t needed = o.kind == obstacle_kind::static_obstacle ? 1 : 2;
+    c.require(o.history.size() >= needed, field + ".history size", static_cast<double>(o.history.size()),
+              needed == 1 ? "at least 1 observation"
+                          : "at least 2 observations (speed and yaw rate are estimated from the history)");
+    for (std::size_t i = 0; i < o.history.size() && !c.error; ++i) {
+      const observation& obs = o.history[i];
+      const std::string at = field + ".history[" + std::to_string(i) + "]";
+      c.finite(at + ".time", obs.time);
+      c.pose(at + ".pose", obs.pose);
+      c.finite(at + ".speed", obs.speed);
+      if (i > 0) {
+        c.require(obs.time > o.history[i - 1].time, at + ".time", obs.time,
+                  "a time after the previous observation's " + number(o.history[i - 1].time) + " s");
+      }
+    }
+    if (!c.error && !o.history.empty()) {
+      c.require(!(o.history.back().time > in.time + 1e-9), field + ".history.back().time", o.history.back().time,
+                "no later than the planning time " + number(in.time) + " s");
+    }
+  }
+  return c.error;
+}
+
+}  // namespace mm
