@@ -1,0 +1,64 @@
+#pragma once
+
+#include "mm/geometry.hpp"
+#include "mm/sim/path.hpp"
+
+namespace mm::sim {
+
+/// A one-lane roundabout with right-hand traffic: vehicles circulate counter-clockwise on the
+/// circulating lane's centre line, the ring of radius R about `center`.
+///
+/// Geometry of an arm (see docs/simulator.md): the arm's axis is the ray from the centre at polar
+/// angle φ. Its lane centre line is parallel to the axis, `lane_offset` = o to the right of the
+/// direction of travel (inbound for an entry, outbound for an exit). The lane joins the ring
+/// through a connecting arc of radius r, tangent to the lane and externally tangent to the ring,
+/// turning right. Its centre F lies at distance R + r from the centre and r from the lane line:
+///
+///     F = C + (o + r)·n + μ·e_φ,   μ = √((R + r)² − (o + r)²),   e_φ = (cos φ, sin φ),
+///
+/// with n = e_{φ+π/2} for an entry and n = e_{φ−π/2} for an exit. The arc touches the ring at the
+/// merge angle ψ = φ + δ (entry) or the diverge angle ψ = φ − δ (exit), δ = atan2(o + r, μ), and
+/// turns by −(π/2 − δ). Every route built here is tangent-continuous (straight, arc, ring, arc,
+/// straight), so a pure-pursuit follower tracks it without heading jumps.
+struct roundabout {
+  vec2 center;                     ///< C [m]
+  double radius = 25.0;            ///< R: radius of the circulating lane's centre line [m], > lane offsets
+  double connection_radius = 20.0; ///< r: radius of the arcs joining the arms to the ring [m], > 0
+};
+
+/// One entry or exit lane of a roundabout.
+struct roundabout_arm {
+  double angle = 0.0;            ///< φ: polar angle of the arm's axis about the centre [rad], CCW from +x
+  double lane_offset = 0.0;      ///< o: lane centre line to the right of travel from the axis [m], 0 ≤ o < R
+  double straight_length = 50.0; ///< length of the straight lane outside the connecting arc [m], > 0
+};
+
+/// Polar angle ψ [rad] at which an entry's connecting arc merges into the ring: φ + δ.
+double merge_angle(const roundabout& ring, const roundabout_arm& entry);
+
+/// Polar angle ψ [rad] at which an exit's connecting arc leaves the ring: φ − δ.
+double diverge_angle(const roundabout& ring, const roundabout_arm& exit);
+
+/// The point of the ring at polar angle `angle` [rad]: C + R·e_angle.
+vec2 ring_point(const roundabout& ring, double angle);
+
+/// In along `entry`, counter-clockwise around the ring from its merge angle to the diverge angle
+/// of `exit` (the CCW angle between them, in (0, 2π]; plus `extra_laps` full laps), out along
+/// `exit`. Starts `entry.straight_length` before the connecting arc; length
+/// ≈ both straights + both arcs + R·(swept angle).
+path roundabout_route(const roundabout& ring, const roundabout_arm& entry, const roundabout_arm& exit,
+                      int extra_laps = 0);
+
+/// Starts on the ring at polar angle `start_angle` [rad], circulates counter-clockwise to the
+/// diverge angle of `exit` (CCW angle in (0, 2π], plus `extra_laps`) and leaves along `exit`.
+/// Arc length on the ring before the connecting arc: R·(swept angle).
+path roundabout_exit_route(const roundabout& ring, double start_angle, const roundabout_arm& exit,
+                           int extra_laps = 0);
+
+/// Enters along `entry` and then circulates counter-clockwise for `sweep` [rad] > 0 on the ring.
+path roundabout_entry_route(const roundabout& ring, const roundabout_arm& entry, double sweep);
+
+/// The ring alone from polar angle `start_angle` [rad], counter-clockwise over `sweep` [rad] > 0.
+path roundabout_ring(const roundabout& ring, double start_angle, double sweep);
+
+}  // namespace mm::sim

@@ -1,0 +1,95 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mm/footprint.hpp"
+#include "mm/maneuver.hpp"
+#include "mm/planner_config.hpp"
+#include "mm/sim/follower.hpp"
+#include "mm/sim/path.hpp"
+#include "mm/sim/scripted.hpp"
+
+namespace mm::sim {
+
+/// Gaussian sensor noise on every observation a planning vehicle makes (spec §4): independent,
+/// zero-mean, with these standard deviations. Zero (the default) is exact sensing.
+struct sensing_noise {
+  double position_sd = 0.0;  ///< σ of each position coordinate, x and y [m], ≥ 0
+  double heading_sd = 0.0;   ///< σ of the heading [rad], ≥ 0
+  double speed_sd = 0.0;     ///< σ of the speed [m/s], ≥ 0
+};
+
+/// A vehicle that follows its reference path and avoids the others with `mm::plan` (the ego A of
+/// the paper; any number of them). It starts on its path at `start_arc_length`, displaced
+/// `start_lateral_offset` to the left, heading along the path tangent.
+struct planning_vehicle {
+  std::string name;                      ///< unique among all agents, non-empty
+  mm::sim::path path;                    ///< reference path, not empty
+  double start_arc_length = 0.0;         ///< s0 [m], 0 ≤ s0 < path length
+  double start_lateral_offset = 0.0;     ///< [m], positive to the left of the path
+  double start_time = 0.0;               ///< [s] ≥ 0; before it the vehicle is absent or waits
+  before_start_behaviour before_start = before_start_behaviour::absent;
+  double initial_speed = 0.0;            ///< v at the start [m/s], 0 ≤ v ≤ limits.speed_cap
+  double desired_speed = 0.0;            ///< v_des [m/s] ≥ 0: the cruise speed, not a cap (spec §3)
+  mm::rectangle shape;                   ///< footprint, spec §2 default 4.5 m × 1.8 m
+  mm::ego_limits limits;                 ///< a_max, d_max, a_lat_max, R_min, v_cap (spec §3)
+  mm::planner_config planner;            ///< forecast policy, horizons, urgent steering (spec §3–§9)
+  follower_config follower;              ///< pure pursuit and speed keeping (u_nom, spec §8)
+  /// false: apply u_nom without planning — the naive baseline that a scenario compares against.
+  /// It still senses (so `simulation::planning_input` works) and is still crash-checked.
+  bool avoidance = true;
+  /// Plan every k-th simulation step (k ≥ 1), holding the last command in between.
+  std::size_t planning_period = 1;
+};
+
+/// A vehicle that replays `motion`, ignoring every other agent (the paper's B).
+struct scripted_vehicle {
+  std::string name;
+  scripted_motion motion;
+  mm::rectangle shape;  ///< footprint [m]
+};
+
+/// A pedestrian that replays `motion` (usually a constant speed and perhaps a stop at the kerb).
+struct pedestrian {
+  std::string name;
+  scripted_motion motion;
+  double radius = 0.35;  ///< disc footprint radius [m] (spec §2)
+};
+
+/// A static obstacle: a convex polygon in world coordinates, 3 to `mm::max_polygon_vertices`
+/// vertices, either orientation. Its reference point is the mean of its vertices.
+struct static_obstacle {
+  std::string name;
+  std::vector<vec2> vertices;  ///< [m]
+};
+
+/// Everything a run needs. Agents get ids in this order: planning vehicles, scripted vehicles,
+/// pedestrians, static obstacles (see `simulation`).
+struct scenario {
+  std::string name;
+  std::string description;
+  double duration = 10.0;    ///< [s] > 0: the run ends at the first step time ≥ duration
+  double time_step = 0.01;   ///< dt [s] > 0 (100 Hz as in the paper)
+  std::uint64_t seed = 0;    ///< seeds the sensor noise
+  sensing_noise noise;
+  std::vector<planning_vehicle> planning_vehicles;
+  std::vector<scripted_vehicle> scripted_vehicles;
+  std::vector<pedestrian> pedestrians;
+  std::vector<static_obstacle> static_obstacles;
+};
+
+/// The first problem of `s`, naming the agent and the field, e.g.
+/// `planning_vehicles[0] "A": desired_speed = -1: expected a finite number ≥ 0 [m/s]`; or nothing.
+std::optional<std::string> validation_error(const scenario& s);
+
+/// The footprint of a static obstacle about its reference point (the mean of its vertices).
+mm::convex_polygon static_footprint(const static_obstacle& obstacle);
+
+/// The reference point of a static obstacle: the mean of its vertices [m].
+vec2 static_reference_point(const static_obstacle& obstacle);
+
+}  // namespace mm::sim

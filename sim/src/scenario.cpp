@@ -1,0 +1,182 @@
+#include "mm/sim/scenario.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <set>
+#include <string_view>
+
+#include "mm/planner.hpp"
+
+namespace mm::sim {
+namespace {
+
+std::string number(double value) {
+  if (std::isnan(value)) return "NaN";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, result.ptr);
+}
+
+/// Collects the first problem; `where` names the agent (or "scenario") being checked.
+class checker {
+ public:
+  std::optional<std::string> error;
+  std::string where;
+
+  void fail(const std::string& field, const std::string& message) {
+    if (!error) error = where + (where.empty() ? "" : ": ") + field + message;
+  }
+  void require(bool ok, const std::string& field, double value, const std::string& expected) {
+    if (!ok) fail(field, " = " + number(value) + ": expected " + expected);
+  }
+  void positive(const std::string& field, double value, const std::string& unit) {
+    require(std::isfinite(value) && value > 0.0, field, value, "a positive finite number [" + unit + "]");
+  }
+  void non_negative(const std::string& field, double value, const std::string& unit) {
+    require(std::isfinite(value) && value >= 0.0, field, value, "a finite number ≥ 0 [" + unit + "]");
+  }
+  void finite(const std::string& field, double value, const std::string& unit) {
+    require(std::isfinite(value), field, value, "a finite number [" + unit + "]");
+  }
+
+  void path_start(const std::string& prefix, const path& p, double start_arc_length) {
+    if (p.empty()) {
+      fail(prefix + "path", ": the path is empty");
+      return;
+    }
+    require(std::isfinite(start_arc_length) && start_arc_length >= 0.0 && start_arc_length < p.length(),
+            prefix + "start_arc_length", start_arc_length,
+            "an arc length in [0, " + number(p.length()) + ") m, the path's length");
+  }
+
+  void motion(const std::string& prefix, const scripted_motion& m) {
+    path_start(prefix, m.path, m.start_arc_length);
+    non_negative(prefix + "start_time", m.start_time, "s");
+    const auto& knots = m.speed.knots;
+    if (knots.empty()) fail(prefix + "speed", ": the speed profile has no knots");
+    for (std::size_t i = 0; i < knots.size(); ++i) {
+      const std::string at = prefix + "speed.knots[" + std::to_string(i) + "]";
+      non_negative(at + ".time", knots[i].time, "s");
+      non_negative(at + ".speed", knots[i].speed, "m/s");
+      if (i > 0) {
+        require(knots[i].time > knots[i - 1].time, at + ".time", knots[i].time,
+                "a time after the previous knot's " + number(knots[i - 1].time) + " s");
+      }
+    }
+    if (m.stop) {
+      require(std::isfinite(m.stop->arc_length) && m.stop->arc_length >= m.start_arc_length &&
+                  m.stop->arc_length <= m.path.length(),
+              prefix + "stop.arc_length", m.stop->arc_length,
+              "an arc length from start_arc_length = " + number(m.start_arc_length) + " m to the path's length " +
+                  number(m.path.length()) + " m");
+      if (m.stop->duration) positive(prefix + "stop.duration", *m.stop->duration, "s");
+    }
+  }
+
+  void rectangle(const std::string& prefix, const mm::rectangle& r) {
+    positive(prefix + "shape.length", r.length, "m");
+    positive(prefix + "shape.width", r.width, "m");
+  }
+};
+
+std::string agent_label(std::string_view list, std::size_t index, const std::string& name) {
+  return std::string(list) + "[" + std::to_string(index) + "] \"" + name + "\"";
+}
+
+void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_step) {
+  c.path_start("", v.path, v.start_arc_length);
+  c.finite("start_lateral_offset", v.start_lateral_offset, "m");
+  c.non_negative("start_time", v.start_time, "s");
+  c.non_negative("initial_speed", v.initial_speed, "m/s");
+  c.non_negative("desired_speed", v.desired_speed, "m/s");
+  c.rectangle("", v.shape);
+  c.positive("follower.lookahead_time", v.follower.lookahead_time, "s");
+  c.positive("follower.min_lookahead", v.follower.min_lookahead, "m");
+  c.positive("follower.speed_gain", v.follower.speed_gain, "1/s");
+  c.positive("follower.comfortable_deceleration", v.follower.comfortable_deceleration, "m/s²");
+  if (v.follower.curve_lateral_acceleration) {
+    c.positive("follower.curve_lateral_acceleration", *v.follower.curve_lateral_acceleration, "m/s²");
+  }
+  c.require(v.planning_period >= 1, "planning_period", static_cast<double>(v.planning_period),
+            "an integer ≥ 1 [steps]");
+  c.require(v.planner.history_window >= time_step, "planner.history_window", v.planner.history_window,
+            "at least the time step " + number(time_step) + " s, so that a track holds two observations");
+  if (c.error || v.path.empty()) return;
+  // The planner's own checks of the limits, the footprint and the configuration.
+  mm::plan_input probe;
+  probe.ego.pose = {v.path.at(v.start_arc_length).position, v.path.at(v.start_arc_length).heading};
+  probe.ego.speed = v.initial_speed;
+  probe.ego.shape = v.shape;
+  probe.ego.limits = v.limits;
+  probe.config = v.planner;
+  if (auto why = mm::validation_error(probe)) {
+    std::string field = *why;
+    if (field.rfind("ego.limits.", 0) == 0) field = "limits." + field.substr(11);
+    else if (field.rfind("ego.speed", 0) == 0) field = "initial_speed" + field.substr(9);
+    else if (field.rfind("config.", 0) == 0) field = "planner." + field.substr(7);
+    c.fail("", field);
+  }
+}
+
+}  // namespace
+
+vec2 static_reference_point(const static_obstacle& obstacle) {
+  vec2 sum;
+  for (const vec2& v : obstacle.vertices) sum = sum + v;
+  return obstacle.vertices.empty() ? sum : (1.0 / static_cast<double>(obstacle.vertices.size())) * sum;
+}
+
+mm::convex_polygon static_footprint(const static_obstacle& obstacle) {
+  const vec2 reference = static_reference_point(obstacle);
+  mm::convex_polygon polygon;
+  for (const vec2& v : obstacle.vertices) polygon.vertices.push_back(v - reference);
+  return polygon;
+}
+
+std::optional<std::string> validation_error(const scenario& s) {
+  checker c;
+  c.where = "scenario";
+  c.positive("duration", s.duration, "s");
+  c.positive("time_step", s.time_step, "s");
+  c.require(!(s.time_step > s.duration), "time_step", s.time_step,
+            "at most the duration " + number(s.duration) + " s");
+  c.non_negative("noise.position_sd", s.noise.position_sd, "m");
+  c.non_negative("noise.heading_sd", s.noise.heading_sd, "rad");
+  c.non_negative("noise.speed_sd", s.noise.speed_sd, "m/s");
+
+  std::set<std::string> names;
+  const auto name = [&](std::string_view list, std::size_t i, const std::string& n) {
+    c.where = agent_label(list, i, n);
+    if (n.empty()) c.fail("name", ": expected a non-empty name");
+    if (!names.insert(n).second) c.fail("name", ": another agent already has this name");
+  };
+  for (std::size_t i = 0; i < s.planning_vehicles.size() && !c.error; ++i) {
+    name("planning_vehicles", i, s.planning_vehicles[i].name);
+    check_planning_vehicle(c, s.planning_vehicles[i], s.time_step);
+  }
+  for (std::size_t i = 0; i < s.scripted_vehicles.size() && !c.error; ++i) {
+    name("scripted_vehicles", i, s.scripted_vehicles[i].name);
+    c.motion("motion.", s.scripted_vehicles[i].motion);
+    c.rectangle("", s.scripted_vehicles[i].shape);
+  }
+  for (std::size_t i = 0; i < s.pedestrians.size() && !c.error; ++i) {
+    name("pedestrians", i, s.pedestrians[i].name);
+    c.motion("motion.", s.pedestrians[i].motion);
+    c.positive("radius", s.pedestrians[i].radius, "m");
+  }
+  for (std::size_t i = 0; i < s.static_obstacles.size() && !c.error; ++i) {
+    const static_obstacle& o = s.static_obstacles[i];
+    name("static_obstacles", i, o.name);
+    for (std::size_t k = 0; k < o.vertices.size() && !c.error; ++k) {
+      const std::string at = "vertices[" + std::to_string(k) + "]";
+      c.finite(at + ".x", o.vertices[k].x, "m");
+      c.finite(at + ".y", o.vertices[k].y, "m");
+    }
+    if (c.error) break;
+    if (auto why = mm::footprint_error(static_footprint(o))) c.fail("vertices", ": " + *why);
+  }
+  return c.error;
+}
+
+}  // namespace mm::sim

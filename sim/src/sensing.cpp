@@ -1,0 +1,73 @@
+#include "sensing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+namespace mm::sim::detail {
+namespace {
+
+/// A uniform deviate in (0, 1] from the 53 high bits.
+double unit_interval(std::uint64_t bits) {
+  return (static_cast<double>(bits >> 11) + 1.0) * 0x1.0p-53;
+}
+
+}  // namespace
+
+std::uint64_t mix64(std::uint64_t x) {
+  x += 0x9e3779b97f4a7c15ULL;
+  x = (x ^ (x >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  x = (x ^ (x >> 27)) * 0x94d049bb133111ebULL;
+  return x ^ (x >> 31);
+}
+
+std::uint64_t name_hash(std::string_view name) {
+  std::uint64_t h = 0xcbf29ce484222325ULL;
+  for (const char c : name) {
+    h ^= static_cast<unsigned char>(c);
+    h *= 0x100000001b3ULL;
+  }
+  return h;
+}
+
+noise_source::noise_source(std::uint64_t seed, std::string_view observer, std::string_view target)
+    : key_(mix64(mix64(mix64(seed) ^ name_hash(observer)) ^ name_hash(target))) {}
+
+void noise_source::standard_normals(std::uint64_t step, double (&out)[4]) const {
+  const std::uint64_t base = mix64(key_ ^ mix64(step));
+  for (int pair = 0; pair < 2; ++pair) {
+    const double u1 = unit_interval(mix64(base + 2 * static_cast<std::uint64_t>(pair)));
+    const double u2 = unit_interval(mix64(base + 2 * static_cast<std::uint64_t>(pair) + 1));
+    const double r = std::sqrt(-2.0 * std::log(u1));
+    const double angle = 2.0 * std::numbers::pi * u2;
+    out[2 * pair] = r * std::cos(angle);
+    out[2 * pair + 1] = r * std::sin(angle);
+  }
+}
+
+void observation_ring::push(const observation& o) {
+  if (buffer_.empty()) buffer_.resize(capacity_);
+  if (size_ < buffer_.size()) {
+    buffer_[(head_ + size_) % buffer_.size()] = o;
+    ++size_;
+  } else {
+    buffer_[head_] = o;
+    head_ = (head_ + 1) % buffer_.size();
+  }
+}
+
+const observation& observation_ring::back() const { return buffer_[(head_ + size_ - 1) % buffer_.size()]; }
+
+void observation_ring::copy_to(std::vector<observation>& out) const {
+  out.clear();
+  out.reserve(size_);
+  for (std::size_t i = 0; i < size_; ++i) out.push_back(buffer_[(head_ + i) % buffer_.size()]);
+}
+
+double observation_ring::max_speed() const {
+  double fastest = 0.0;
+  for (std::size_t i = 0; i < size_; ++i) fastest = std::max(fastest, buffer_[(head_ + i) % buffer_.size()].speed);
+  return fastest;
+}
+
+}  // namespace mm::sim::detail

@@ -1,0 +1,58 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "mm/forecast.hpp"
+
+namespace mm::sim::detail {
+
+/// SplitMix64's finaliser: a bijective 64-bit mixer (Steele, Lea, Flood 2014).
+std::uint64_t mix64(std::uint64_t x);
+
+/// FNV-1a 64-bit hash of a name.
+std::uint64_t name_hash(std::string_view name);
+
+/// Counter-based Gaussian noise: the noise of the observation of `target` by `observer` at step
+/// k depends only on (seed, observer name, target name, k). So it does not change when agents are
+/// added, removed, reordered, or skipped while out of range.
+class noise_source {
+ public:
+  noise_source(std::uint64_t seed, std::string_view observer, std::string_view target);
+
+  /// Four independent standard normal deviates for step `step` (Box–Muller on four uniforms).
+  void standard_normals(std::uint64_t step, double (&out)[4]) const;
+
+ private:
+  std::uint64_t key_;
+};
+
+/// The most recent observations of one target, oldest first, in a fixed-capacity ring
+/// (allocated on the first push).
+class observation_ring {
+ public:
+  explicit observation_ring(std::size_t capacity = 2) : capacity_(capacity < 1 ? 1 : capacity) {}
+
+  void push(const observation& o);
+  void clear() {
+    size_ = 0;
+    head_ = 0;
+  }
+  std::size_t size() const { return size_; }
+  bool empty() const { return size_ == 0; }
+  const observation& back() const;
+  /// Oldest first.
+  void copy_to(std::vector<observation>& out) const;
+  /// Largest observed speed in the ring [m/s].
+  double max_speed() const;
+
+ private:
+  std::size_t capacity_;
+  std::vector<observation> buffer_;
+  std::size_t head_ = 0;  ///< index of the oldest
+  std::size_t size_ = 0;
+};
+
+}  // namespace mm::sim::detail

@@ -1,0 +1,591 @@
+#include "mm/sim/simulation.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+#include "sensing.hpp"
+
+namespace mm::sim {
+namespace {
+
+constexpr double inf = std::numeric_limits<double>::infinity();
+constexpr double kmh_per_ms = 3.6;
+/// Offsets from the path up to this are "on the path" for the bypass metric (spec §12) [m].
+constexpr double bypass_threshold = 0.1;
+
+/// Margin [m] added to the planner's own reach when deciding which tracks to hand to it.
+constexpr double relevance_slack = 5.0;
+/// Extra time [s] beyond the history window during which a pair is tracked before it can matter.
+constexpr double tracking_lead_time = 1.0;
+
+/// Phases of a scripted agent mapped onto agent statuses.
+agent_status status_of(motion_phase phase, before_start_behaviour before) {
+  switch (phase) {
+    case motion_phase::not_started:
+      return before == before_start_behaviour::wait ? agent_status::waiting : agent_status::not_started;
+    case motion_phase::moving: return agent_status::active;
+    case motion_phase::stopped: return agent_status::stopped;
+    case motion_phase::finished: return agent_status::finished;
+  }
+  return agent_status::finished;
+}
+
+mm::obstacle_kind obstacle_kind_of(agent_kind kind) {
+  switch (kind) {
+    case agent_kind::planning_vehicle:
+    case agent_kind::scripted_vehicle: return mm::obstacle_kind::vehicle;
+    case agent_kind::pedestrian: return mm::obstacle_kind::pedestrian;
+    case agent_kind::static_obstacle: return mm::obstacle_kind::static_obstacle;
+  }
+  return mm::obstacle_kind::vehicle;
+}
+
+/// Farthest the ego can travel within the collision window: a_max over T_h, then straight at the
+/// speed reached (the planner's own reach, spec §9).
+double ego_reach(double speed, const mm::ego_limits& limits, const mm::planner_config& config) {
+  return mm::travelled_distance(speed, limits.max_acceleration, config.displacement_horizon, limits.speed_cap) +
+         mm::speed_after(speed, limits.max_acceleration, config.displacement_horizon, limits.speed_cap) *
+             (config.collision_window - config.displacement_horizon);
+}
+
+/// Running metrics of one planning vehicle.
+struct metrics_state {
+  bool measured = false;  ///< at least one step counted
+  double min_speed = inf;
+  double max_speed = 0.0;
+  double max_abs_offset = 0.0;
+  double time_in_brake = 0.0;
+  double time_in_accel = 0.0;
+  std::size_t planning_steps = 0;
+  std::vector<double> cpu_us;
+
+  bool crash = false;
+  double crash_time = 0.0;
+  agent_id crash_with = 0;
+
+  double min_gap = inf;
+  double min_gap_time = 0.0;
+  agent_id closest = 0;
+  double speed_at_min = 0.0;
+  double offset_at_min = 0.0;
+  /// True states at the smallest gap, for the TTC (computed on demand).
+  mm::pose own_pose;
+  vec2 own_velocity;
+  mm::pose other_pose;
+  vec2 other_velocity;
+};
+
+}  // namespace
+
+std::string_view to_string(agent_kind kind) {
+  switch (kind) {
+    case agent_kind::planning_vehicle: return "planning_vehicle";
+    case agent_kind::scripted_vehicle: return "scripted_vehicle";
+    case agent_kind::pedestrian: return "pedestrian";
+    case agent_kind::static_obstacle: return "static_obstacle";
+  }
+  return "unknown";
+}
+
+std::string_view to_string(agent_status status) {
+  switch (status) {
+    case agent_status::not_started: return "not_started";
+    case agent_status::waiting: return "waiting";
+    case agent_status::active: return "active";
+    case agent_status::stopped: return "stopped";
+    case agent_status::crashed: return "crashed";
+    case agent_status::finished: return "finished";
+  }
+  return "unknown";
+}
+
+bool is_present(agent_status status) {
+  return status == agent_status::waiting || status == agent_status::active || status == agent_status::stopped ||
+         status == agent_status::crashed;
+}
+
+struct simulation::impl {
+  /// A planning vehicle's runtime: its command, plans, tracks and metrics.
+  struct vehicle {
+    const planning_vehicle* spec = nullptr;
+    maneuver command;
+    /// Mode and family behind `command` (nominal for the follower's own u_nom).
+    mm::planning_mode command_mode = mm::planning_mode::nominal;
+    mm::family command_family = mm::family::brake;
+    bool has_command = false;
+    bool planned_now = false;
+    std::optional<plan_record> last_plan;
+    std::vector<detail::observation_ring> tracks;  ///< [target id]
+    std::vector<detail::noise_source> noise;       ///< [target id]
+    mm::plan_input scratch;                        ///< reused planning input
+    metrics_state metrics;
+  };
+
+  struct scenario sc;
+  run_options options;
+  std::vector<agent_info> infos;
+  std::vector<agent_state> states;
+  std::vector<double> radii;                       ///< bounding radius of each footprint [m]
+  std::vector<const scripted_motion*> motions;     ///< per id; null for planning vehicles and statics
+  std::vector<vehicle> vehicles;                   ///< ids 0..P−1
+  std::vector<crash_event> crash_log;
+  std::size_t step = 0;
+  std::size_t last_step = 0;
+
+  impl(struct scenario s, run_options run) : sc(std::move(s)), options(run) {
+    if (auto error = validation_error(sc)) throw std::invalid_argument(*error);
+    last_step = static_cast<std::size_t>(std::ceil(sc.duration / sc.time_step - 1e-9));
+    for (const planning_vehicle& v : sc.planning_vehicles) add(v.name, agent_kind::planning_vehicle, v.shape, nullptr);
+    for (const scripted_vehicle& v : sc.scripted_vehicles) {
+      add(v.name, agent_kind::scripted_vehicle, v.shape, &v.motion);
+    }
+    for (const pedestrian& p : sc.pedestrians) add(p.name, agent_kind::pedestrian, mm::disc{p.radius}, &p.motion);
+    for (const static_obstacle& o : sc.static_obstacles) {
+      add(o.name, agent_kind::static_obstacle, static_footprint(o), nullptr);
+      states.back().status = agent_status::active;
+      states.back().pose = {static_reference_point(o), 0.0};
+    }
+    vehicles.resize(sc.planning_vehicles.size());
+    for (std::size_t i = 0; i < vehicles.size(); ++i) {
+      vehicle& v = vehicles[i];
+      v.spec = &sc.planning_vehicles[i];
+      const double window = v.spec->planner.history_window;
+      const auto capacity = static_cast<std::size_t>(std::floor(window / sc.time_step + 1e-9)) + 2;
+      v.tracks.assign(infos.size(), detail::observation_ring(capacity));
+      for (const agent_info& target : infos) v.noise.emplace_back(sc.seed, infos[i].name, target.name);
+    }
+    advance_agents(0.0, true);
+    detect_crashes();
+    measure();
+    if (!ended()) decide();
+  }
+
+  void add(const std::string& name, agent_kind kind, mm::footprint shape, const scripted_motion* motion) {
+    radii.push_back(mm::bounding_radius(shape));
+    infos.push_back({name, kind, std::move(shape)});
+    states.emplace_back();
+    motions.push_back(motion);
+  }
+
+  double now() const { return static_cast<double>(step) * sc.time_step; }
+
+  bool ended() const {
+    if (step >= last_step) return true;
+    if (vehicles.empty()) return false;
+    return std::all_of(vehicles.begin(), vehicles.end(), [&](const vehicle& v) {
+      const agent_status s = states[id_of(v)].status;
+      return s == agent_status::crashed || s == agent_status::finished;
+    });
+  }
+
+  agent_id id_of(const vehicle& v) const { return static_cast<agent_id>(&v - vehicles.data()); }
+
+  /// True once the clock has reached `start_time` (on the step grid, to rounding).
+  bool started(double start_time) const { return now() >= start_time - 1e-9 * sc.time_step; }
+
+  // --- 1. motion -------------------------------------------------------------------------------
+
+  /// Moves every agent to the current time; `initial` places them at t = 0 instead.
+  void advance_agents(double dt, bool initial) {
+    for (vehicle& v : vehicles) advance_vehicle(v, dt, initial);
+    for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
+      if (motions[id] != nullptr) advance_scripted(id);
+    }
+  }
+
+  void place_at_start(vehicle& v, agent_status status) {
+    agent_state& s = states[id_of(v)];
+    const planning_vehicle& spec = *v.spec;
+    const path_point start = spec.path.at(spec.start_arc_length);
+    s.status = status;
+    s.pose = {start.position + spec.start_lateral_offset * unit_vector(start.heading + std::numbers::pi / 2.0),
+              start.heading};
+    s.speed = status == agent_status::active ? spec.initial_speed : 0.0;
+    s.arc_length = spec.start_arc_length;
+    s.lateral_offset = spec.start_lateral_offset;
+    s.acceleration = 0.0;
+    s.curvature = 0.0;
+  }
+
+  void advance_vehicle(vehicle& v, double dt, bool initial) {
+    agent_state& s = states[id_of(v)];
+    const planning_vehicle& spec = *v.spec;
+    if (initial || s.status == agent_status::not_started || s.status == agent_status::waiting) {
+      if (started(spec.start_time)) {
+        place_at_start(v, agent_status::active);
+      } else if (initial) {
+        place_at_start(v, spec.before_start == before_start_behaviour::wait ? agent_status::waiting
+                                                                            : agent_status::not_started);
+      }
+      return;
+    }
+    if (s.status != agent_status::active) return;
+    if (v.command_mode != mm::planning_mode::nominal) {
+      (v.command_family == mm::family::brake ? v.metrics.time_in_brake : v.metrics.time_in_accel) += dt;
+    }
+    const double cap = spec.limits.speed_cap;
+    const mm::pose next = mm::maneuver_pose(s.pose, s.speed, v.command, dt, dt, cap);
+    s.speed = mm::speed_after(s.speed, v.command.acceleration, dt, cap);
+    s.pose = {next.position, wrap_angle(next.heading)};
+    const path_projection p = spec.path.project(s.pose.position, s.arc_length, 5.0 + 2.0 * s.speed * dt);
+    s.arc_length = p.arc_length;
+    s.lateral_offset = p.lateral_offset;
+    if (s.arc_length >= spec.path.length()) finish(v);
+  }
+
+  void finish(vehicle& v) {
+    agent_state& s = states[id_of(v)];
+    s.status = agent_status::finished;
+    s.acceleration = 0.0;
+    s.curvature = 0.0;
+    v.planned_now = false;
+    for (detail::observation_ring& ring : v.tracks) ring.clear();
+  }
+
+  void advance_scripted(agent_id id) {
+    agent_state& s = states[id];
+    if (s.status == agent_status::crashed || s.status == agent_status::finished) return;
+    const scripted_motion& m = *motions[id];
+    const scripted_sample sample = scripted_state(m, now());
+    const path_point where = m.path.at(sample.arc_length);
+    s.status = status_of(sample.phase, m.before_start);
+    s.pose = {where.position, where.heading};
+    s.speed = sample.speed;
+    s.acceleration = sample.acceleration;
+    s.curvature = s.status == agent_status::active ? where.curvature : 0.0;
+    s.arc_length = sample.arc_length;
+    s.lateral_offset = 0.0;
+  }
+
+  // --- 2. crashes ------------------------------------------------------------------------------
+
+  /// Static obstacles never crash; the others crash once.
+  bool can_crash(agent_id id) const {
+    return states[id].status != agent_status::crashed && infos[id].kind != agent_kind::static_obstacle;
+  }
+
+  mm::placed_footprint placed(agent_id id) const { return mm::place(infos[id].shape, states[id].pose); }
+
+  void detect_crashes() {
+    for (agent_id i = 0; i < vehicles.size(); ++i) {
+      if (!states[i].present()) continue;
+      for (agent_id j = 0; j < infos.size(); ++j) {
+        if (j == i || (j < vehicles.size() && j < i) || !states[j].present()) continue;
+        if (!can_crash(i) && !can_crash(j)) continue;
+        const double reach = radii[i] + radii[j];
+        if (squared_norm(states[j].pose.position - states[i].pose.position) >= reach * reach) continue;
+        if (!mm::overlaps(placed(i), placed(j))) continue;
+        crash_log.push_back({now(), i, j});
+        crash(i, j);
+        crash(j, i);
+      }
+    }
+  }
+
+  /// `id` has overlapped `other`: it stops where it is, for good. Static obstacles are unaffected.
+  void crash(agent_id id, agent_id other) {
+    agent_state& s = states[id];
+    if (s.status == agent_status::crashed || infos[id].kind == agent_kind::static_obstacle) return;
+    if (id < vehicles.size()) {
+      metrics_state& m = vehicles[id].metrics;
+      if (s.status == agent_status::active) note_motion(m, s);
+      m.crash = true;
+      m.crash_time = now();
+      m.crash_with = other;
+      m.min_gap = 0.0;
+      m.min_gap_time = now();
+      m.closest = other;
+      m.speed_at_min = s.speed;
+      m.offset_at_min = s.lateral_offset;
+      vehicles[id].command = {};
+      vehicles[id].command_mode = mm::planning_mode::nominal;
+      vehicles[id].planned_now = false;
+    }
+    s.status = agent_status::crashed;
+    s.speed = 0.0;
+    s.acceleration = 0.0;
+    s.curvature = 0.0;
+  }
+
+  // --- 3. metrics ------------------------------------------------------------------------------
+
+  static void note_motion(metrics_state& m, const agent_state& s) {
+    m.measured = true;
+    m.min_speed = std::min(m.min_speed, s.speed);
+    m.max_speed = std::max(m.max_speed, s.speed);
+    m.max_abs_offset = std::max(m.max_abs_offset, std::abs(s.lateral_offset));
+  }
+
+  vec2 velocity(agent_id id) const { return states[id].speed * unit_vector(states[id].pose.heading); }
+
+  void measure() {
+    for (agent_id i = 0; i < vehicles.size(); ++i) {
+      const agent_state& s = states[i];
+      if (s.status != agent_status::active) continue;
+      metrics_state& m = vehicles[i].metrics;
+      note_motion(m, s);
+      std::optional<mm::placed_footprint> own;
+      for (agent_id j = 0; j < infos.size(); ++j) {
+        if (j == i || !states[j].present()) continue;
+        const double centres = norm(states[j].pose.position - s.pose.position);
+        if (centres - radii[i] - radii[j] >= m.min_gap) continue;
+        if (!own) own = placed(i);
+        const double gap = mm::gap_distance(*own, placed(j));
+        if (gap < m.min_gap) {
+          m.min_gap = gap;
+          m.min_gap_time = now();
+          m.closest = j;
+          m.speed_at_min = s.speed;
+          m.offset_at_min = s.lateral_offset;
+          m.own_pose = s.pose;
+          m.own_velocity = velocity(i);
+          m.other_pose = states[j].pose;
+          m.other_velocity = velocity(j);
+        }
+      }
+    }
+  }
+
+  // --- 4. sensing and decisions ----------------------------------------------------------------
+
+  bool is_planner_relevant(const vehicle& v, agent_id target, double own_reach, double target_speed,
+                           vec2 target_position) const {
+    const agent_id i = id_of(v);
+    const double reach = own_reach + target_speed * v.spec->planner.collision_window + radii[i] + radii[target] +
+                         v.spec->planner.safety_margin + relevance_slack;
+    return squared_norm(target_position - states[i].pose.position) < reach * reach;
+  }
+
+  /// Each present agent within tracking range is observed, with noise; the others are forgotten.
+  void sense(vehicle& v) {
+    const agent_id i = id_of(v);
+    const planning_vehicle& spec = *v.spec;
+    const agent_state& own = states[i];
+    const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
+    const double lead = spec.planner.history_window + tracking_lead_time;
+    const sensing_noise& noise = sc.noise;
+    const bool noisy = noise.position_sd > 0.0 || noise.heading_sd > 0.0 || noise.speed_sd > 0.0;
+    for (agent_id j = 0; j < infos.size(); ++j) {
+      if (j == i) continue;
+      detail::observation_ring& ring = v.tracks[j];
+      const agent_state& target = states[j];
+      // In range when the pair could become relevant to the planner within the history window
+      // plus a lead time, closing at most at v_cap + v_j + 1 m/s.
+      const double closing = spec.limits.speed_cap + target.speed + 1.0;
+      const bool in_range = target.present() &&
+                            is_planner_relevant(v, j, own_reach + closing * lead, target.speed + 1.0,
+                                                target.pose.position);
+      if (!in_range) {
+        ring.clear();
+        continue;
+      }
+      mm::observation o{now(), target.pose, target.speed};
+      if (noisy) {
+        double n[4];
+        v.noise[j].standard_normals(step, n);
+        o.pose.position = o.pose.position + vec2{noise.position_sd * n[0], noise.position_sd * n[1]};
+        o.pose.heading = wrap_angle(o.pose.heading + noise.heading_sd * n[2]);
+        o.speed += noise.speed_sd * n[3];
+      }
+      ring.push(o);
+    }
+  }
+
+  /// Fills `input` with what vehicle `v` plans on now (u_nom given).
+  void fill_input(const vehicle& v, const maneuver& nominal, mm::plan_input& input) const {
+    const agent_id i = id_of(v);
+    const planning_vehicle& spec = *v.spec;
+    const agent_state& own = states[i];
+    input.time = now();
+    input.ego.pose = own.pose;
+    input.ego.speed = own.speed;
+    input.ego.shape = spec.shape;
+    input.ego.limits = spec.limits;
+    input.nominal = nominal;
+    input.config = spec.planner;
+    const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
+    std::size_t count = 0;
+    for (agent_id j = 0; j < infos.size(); ++j) {
+      const detail::observation_ring& ring = v.tracks[j];
+      const mm::obstacle_kind kind = obstacle_kind_of(infos[j].kind);
+      if (ring.size() < (kind == mm::obstacle_kind::static_obstacle ? 1U : 2U)) continue;
+      if (!is_planner_relevant(v, j, own_reach, ring.max_speed() + 1.0, ring.back().pose.position)) continue;
+      if (count == input.obstacles.size()) input.obstacles.emplace_back();
+      mm::obstacle_track& track = input.obstacles[count++];
+      track.id = static_cast<std::uint32_t>(j);
+      track.kind = kind;
+      track.shape = infos[j].shape;
+      ring.copy_to(track.history);
+    }
+    input.obstacles.resize(count);
+  }
+
+  follower_command nominal_of(const vehicle& v) const {
+    const agent_state& s = states[id_of(v)];
+    return follow_path(v.spec->path, s.arc_length, s.pose, s.speed, v.spec->desired_speed, v.spec->follower,
+                       v.spec->limits);
+  }
+
+  void decide() {
+    for (vehicle& v : vehicles) {
+      v.planned_now = false;
+      agent_state& s = states[id_of(v)];
+      if (s.status == agent_status::waiting || s.status == agent_status::active) sense(v);
+      if (s.status != agent_status::active) continue;
+      const maneuver nominal = nominal_of(v).nominal;
+      if (!v.spec->avoidance) {
+        v.command = nominal;
+        v.command_mode = mm::planning_mode::nominal;
+      } else if (!v.has_command || step % v.spec->planning_period == 0) {
+        plan(v, nominal);
+      }
+      v.has_command = true;
+      s.acceleration = v.command.acceleration;
+      s.curvature = v.command.curvature;
+    }
+  }
+
+  void plan(vehicle& v, const maneuver& nominal) {
+    fill_input(v, nominal, v.scratch);
+    plan_record record;
+    record.time = now();
+    if (options.measure_cpu_time) {
+      const auto start = std::chrono::steady_clock::now();
+      record.result = mm::plan(v.scratch);
+      const auto stop = std::chrono::steady_clock::now();
+      record.cpu_time_us = std::chrono::duration<double, std::micro>(stop - start).count();
+      v.metrics.cpu_us.push_back(record.cpu_time_us);
+    } else {
+      record.result = mm::plan(v.scratch);
+    }
+    if (!record.result.ok()) {
+      throw std::logic_error("planning vehicle \"" + infos[id_of(v)].name + "\" at t = " + std::to_string(now()) +
+                             " s: mm::plan rejected its input: " + record.result.error);
+    }
+    ++v.metrics.planning_steps;
+    v.command = record.result.command;
+    v.command_mode = record.result.mode;
+    v.command_family = record.result.selected_family;
+    v.planned_now = true;
+    v.last_plan = std::move(record);
+  }
+
+  // --- results ---------------------------------------------------------------------------------
+
+  run_metrics metrics_of(agent_id id) const {
+    const metrics_state& m = vehicles[id].metrics;
+    run_metrics r;
+    r.agent = infos[id].name;
+    r.crash = m.crash;
+    if (m.crash) {
+      r.crash_time_s = m.crash_time;
+      r.crash_with = infos[m.crash_with].name;
+    }
+    if (m.min_gap < inf) {
+      r.min_dist_m = m.min_gap;
+      r.min_dist_time_s = m.min_gap_time;
+      r.closest_agent = infos[m.closest].name;
+      r.speed_kmh = m.speed_at_min * kmh_per_ms;
+      r.lateral_offset_at_min_m = m.offset_at_min;
+      if (!m.crash) {
+        r.ttc_at_min_s = constant_velocity_ttc(infos[id].shape, m.own_pose, m.own_velocity, infos[m.closest].shape,
+                                               m.other_pose, m.other_velocity);
+      }
+    }
+    r.max_lateral_offset_m = m.max_abs_offset;
+    if (m.max_abs_offset > bypass_threshold && m.min_gap < inf) {
+      r.bypass = m.offset_at_min > 0.0 ? bypass_side::left
+                 : m.offset_at_min < 0.0 ? bypass_side::right
+                                         : bypass_side::none;
+    }
+    if (m.measured) {
+      r.min_speed_kmh = m.min_speed * kmh_per_ms;
+      r.max_speed_kmh = m.max_speed * kmh_per_ms;
+    }
+    r.time_in_brake_s = m.time_in_brake;
+    r.time_in_accel_s = m.time_in_accel;
+    r.planning_steps = m.planning_steps;
+    r.cpu_median_us = quantile(m.cpu_us, 0.5);
+    r.cpu_p99_us = quantile(m.cpu_us, 0.99);
+    return r;
+  }
+};
+
+simulation::simulation(struct scenario s, run_options options)
+    : impl_(std::make_unique<impl>(std::move(s), options)) {}
+simulation::~simulation() = default;
+simulation::simulation(simulation&&) noexcept = default;
+simulation& simulation::operator=(simulation&&) noexcept = default;
+
+void simulation::step() {
+  impl& m = *impl_;
+  if (m.ended()) return;
+  ++m.step;
+  m.advance_agents(m.sc.time_step, false);
+  m.detect_crashes();
+  m.measure();
+  if (m.ended()) {
+    for (impl::vehicle& v : m.vehicles) v.planned_now = false;
+    return;
+  }
+  m.decide();
+}
+
+bool simulation::ended() const { return impl_->ended(); }
+double simulation::time() const { return impl_->now(); }
+std::size_t simulation::step_index() const { return impl_->step; }
+const struct scenario& simulation::definition() const { return impl_->sc; }
+std::size_t simulation::agent_count() const { return impl_->infos.size(); }
+std::size_t simulation::planning_vehicle_count() const { return impl_->vehicles.size(); }
+const agent_info& simulation::info(agent_id id) const { return impl_->infos.at(id); }
+const agent_state& simulation::state(agent_id id) const { return impl_->states.at(id); }
+std::span<const agent_state> simulation::states() const { return impl_->states; }
+
+std::optional<agent_id> simulation::find(std::string_view name) const {
+  for (agent_id id = 0; id < impl_->infos.size(); ++id) {
+    if (impl_->infos[id].name == name) return id;
+  }
+  return std::nullopt;
+}
+
+const plan_record* simulation::last_plan(agent_id id) const {
+  const auto& v = impl_->vehicles.at(id);
+  return v.last_plan ? &*v.last_plan : nullptr;
+}
+
+bool simulation::planned_now(agent_id id) const { return impl_->vehicles.at(id).planned_now; }
+
+std::optional<mm::plan_input> simulation::planning_input(agent_id id) const {
+  const impl::vehicle& v = impl_->vehicles.at(id);
+  if (!impl_->states[id].present()) return std::nullopt;
+  mm::plan_input input;
+  impl_->fill_input(v, impl_->nominal_of(v).nominal, input);
+  return input;
+}
+
+std::span<const crash_event> simulation::crashes() const { return impl_->crash_log; }
+
+run_metrics simulation::metrics(agent_id id) const {
+  if (id >= impl_->vehicles.size()) throw std::out_of_range("metrics: agent " + std::to_string(id) + " is not a planning vehicle");
+  return impl_->metrics_of(id);
+}
+
+std::vector<run_metrics> simulation::all_metrics() const {
+  std::vector<run_metrics> all;
+  for (agent_id id = 0; id < impl_->vehicles.size(); ++id) all.push_back(impl_->metrics_of(id));
+  return all;
+}
+
+void run(simulation& sim, const std::function<void(const simulation&)>& observe) {
+  if (observe) observe(sim);
+  while (!sim.ended()) {
+    sim.step();
+    if (observe) observe(sim);
+  }
+}
+
+}  // namespace mm::sim

@@ -1,0 +1,137 @@
+#include "mm/sim/follower.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "mm/sim/simulation.hpp"
+#include "sim/scenarios.hpp"
+
+namespace {
+
+using namespace mm::sim;
+using mm::sim::testing::cruising;
+using mm::sim::testing::straight_path;
+constexpr double pi = std::numbers::pi;
+
+TEST(sim_follower, pure_pursuit_steers_on_the_circle_through_the_goal) {
+  const mm::pose vehicle{{0.0, 0.0}, 0.0};
+  EXPECT_DOUBLE_EQ(pure_pursuit_curvature(vehicle, {10.0, 0.0}), 0.0);
+  // A goal on the circle of radius 25 tangent to the heading, centre (0, 25).
+  const double angle = 0.4;
+  const mm::vec2 goal{25.0 * std::sin(angle), 25.0 - 25.0 * std::cos(angle)};
+  EXPECT_NEAR(pure_pursuit_curvature(vehicle, goal), 1.0 / 25.0, 1e-12);
+  EXPECT_NEAR(pure_pursuit_curvature(vehicle, {goal.x, -goal.y}), -1.0 / 25.0, 1e-12);
+  EXPECT_DOUBLE_EQ(lookahead_distance(2.0, follower_config{}), 5.0);
+  EXPECT_DOUBLE_EQ(lookahead_distance(20.0, follower_config{}), 16.0);
+}
+
+TEST(sim_follower, the_curve_speed_limit_is_the_braking_profile_to_the_curve_speed) {
+  path p(mm::pose{{0.0, 0.0}, 0.0});
+  p.straight(50.0).turn(20.0, pi / 2.0);
+  // v_c = √(5 · 20) = 10 m/s; 30 m before the curve: √(100 + 2·2·30) = √220.
+  const curve_speed_limit ahead = curve_speed_limit_ahead(p, 20.0, 100.0, 5.0, 2.0);
+  EXPECT_NEAR(ahead.curve_speed, 10.0, 1e-12);
+  EXPECT_NEAR(ahead.distance, 30.0, 1e-12);
+  EXPECT_NEAR(ahead.speed, std::sqrt(220.0), 1e-12);
+  EXPECT_TRUE(std::isinf(curve_speed_limit_ahead(p, 20.0, 29.0, 5.0, 2.0).speed));  // beyond the preview
+  EXPECT_NEAR(curve_speed_limit_ahead(p, 60.0, 10.0, 5.0, 2.0).speed, 10.0, 1e-12);  // on the curve
+}
+
+/// Runs `s` and returns the largest |lateral offset| of vehicle 0 while `window(t)` holds.
+template <typename Window>
+double largest_offset(scenario s, Window window) {
+  simulation sim(std::move(s));
+  double worst = 0.0;
+  run(sim, [&](const simulation& now) {
+    if (window(now.time())) worst = std::max(worst, std::abs(now.state(0).lateral_offset));
+  });
+  return worst;
+}
+
+TEST(sim_follower, pure_pursuit_holds_a_circle_of_radius_25_m_at_10_m_s) {
+  // 30 m of straight road joining, tangentially, 3/4 of a circle of radius 25 m about the origin.
+  path p(mm::pose{{-30.0, -25.0}, 0.0});
+  p.straight(30.0).turn(25.0, 1.5 * pi);
+  scenario s;
+  s.duration = 14.0;  // the arc ends at 3 + 11.78 s
+  s.planning_vehicles.push_back(cruising("A", p, 10.0));
+  // Steady state: from 6 s after entering the arc (at 3 s) until the lookahead passes its end.
+  // (For a unicycle, pure pursuit's steady state on a circle is the circle itself.)
+  const double steady = largest_offset(s, [](double t) { return t >= 9.0 && t <= 13.5; });
+  const double transient = largest_offset(s, [](double) { return true; });
+  std::printf("circle R = 25 m at 10 m/s: steady |offset| <= %.5f m, with the entry transient %.4f m\n", steady,
+              transient);
+  EXPECT_LT(steady, 0.001);
+  EXPECT_LT(transient, 0.3);  // cutting inside where the curvature jumps from 0 to 1/25
+}
+
+TEST(sim_follower, keeps_the_desired_speed_with_a_first_order_response) {
+  scenario s;
+  s.duration = 8.0;
+  planning_vehicle a = cruising("A", straight_path({0.0, 0.0}, 0.0, 500.0), 8.0);
+  a.desired_speed = 12.0;
+  s.planning_vehicles.push_back(a);
+  simulation sim(s);
+  double fastest = 0.0;
+  double at_one_second = 0.0;
+  run(sim, [&](const simulation& now) {
+    fastest = std::max(fastest, now.state(0).speed);
+    if (now.step_index() == 100) at_one_second = now.state(0).speed;
+  });
+  // a = min(a_max, k_v·(v_des − v)) with k_v = 1/s: capped at 3 m/s² up to 9 m/s (1/3 s), then
+  // v = 12 − 3·exp(−(t − 1/3)), time constant 1 s.
+  const double expected = 12.0 - 3.0 * std::exp(-(1.0 - 1.0 / 3.0));
+  EXPECT_NEAR(at_one_second, expected, 0.01);  // the command is held over each 10 ms step
+  EXPECT_NEAR(sim.state(0).speed, 12.0, 0.005);
+  EXPECT_LE(fastest, 12.0 + 1e-9);
+}
+
+TEST(sim_follower, slows_ahead_of_a_curve_so_that_v_squared_kappa_stays_within_a_lat_max) {
+  // 80 m of straight road at 15 m/s, then a curve of radius 15 m: v_c = √(5 · 15) ≈ 8.66 m/s.
+  path p(mm::pose{{0.0, 0.0}, 0.0});
+  p.straight(80.0).turn(15.0, pi).straight(100.0);
+  scenario s;
+  s.duration = 16.0;
+  s.planning_vehicles.push_back(cruising("A", p, 15.0));
+  simulation sim(s);
+  double worst_lateral = 0.0;
+  double entry_speed = 0.0;
+  double hardest_braking = 0.0;
+  run(sim, [&](const simulation& now) {
+    const agent_state& a = now.state(0);
+    if (a.arc_length >= 80.0 && a.arc_length <= 80.0 + 15.0 * pi) {
+      if (entry_speed == 0.0) entry_speed = a.speed;
+      worst_lateral = std::max(worst_lateral, a.speed * a.speed / 15.0);
+    }
+    hardest_braking = std::min(hardest_braking, a.acceleration);
+  });
+  std::printf("curve R = 15 m from 15 m/s: entry %.3f m/s, max v²κ %.3f m/s², hardest braking %.3f m/s²\n",
+              entry_speed, worst_lateral, hardest_braking);
+  EXPECT_LE(entry_speed, std::sqrt(75.0) + 0.05);
+  EXPECT_LE(worst_lateral, 5.0 * 1.01);
+  EXPECT_GE(hardest_braking, -2.6);  // about the comfortable 2 m/s², far from d_max = 7 m/s²
+  EXPECT_GT(sim.state(0).speed, 14.0);  // back up to speed on the straight after the curve
+}
+
+TEST(sim_follower, returns_to_its_path_from_a_lateral_offset) {
+  scenario s;
+  s.duration = 6.0;
+  planning_vehicle a = cruising("A", straight_path({0.0, 0.0}, 0.0, 200.0), 10.0);
+  a.start_lateral_offset = 2.0;
+  s.planning_vehicles.push_back(a);
+  simulation sim(s);
+  double overshoot = 0.0;
+  run(sim, [&](const simulation& now) { overshoot = std::min(overshoot, now.state(0).lateral_offset); });
+  std::printf("from 2 m left: offset after 6 s %.5f m, overshoot %.5f m\n", sim.state(0).lateral_offset, overshoot);
+  EXPECT_LT(std::abs(sim.state(0).lateral_offset), 0.01);
+  // Linearised on a straight line, pure pursuit is e'' + (2v/L)e' + (2v²/L²)e = 0: damping ratio
+  // 1/√2 whatever v and L, so an overshoot of exp(−π) ≈ 4.3 % of the initial offset.
+  EXPECT_GT(overshoot, -0.05 * 2.0);
+  EXPECT_LT(overshoot, -0.03 * 2.0);
+}
+
+}  // namespace

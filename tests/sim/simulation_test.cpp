@@ -1,0 +1,280 @@
+#include "mm/sim/simulation.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+#include <vector>
+
+#include "sim/scenarios.hpp"
+
+namespace {
+
+using namespace mm::sim;
+using mm::sim::testing::crossing;
+using mm::sim::testing::cruising;
+using mm::sim::testing::scripted;
+using mm::sim::testing::straight_path;
+constexpr double pi = std::numbers::pi;
+
+TEST(simulation, a_vehicle_that_does_not_plan_hits_the_crossing_vehicle_at_the_first_overlapping_step) {
+  simulation sim(crossing(false));
+  run(sim);
+  // A (4.5 × 1.8, east at 100/9 m/s from x = 0) and B (south along x = 40 from y = 36 at 10 m/s)
+  // overlap once A's front passes B's west side, x_A + 2.25 > 39.1, and B's rear end has come
+  // down to A's north side, y_B − 2.25 < 0.9: the later of 36.85/v_A = 3.3165 s and 3.285 s.
+  const double overlap = std::max(36.85 / (40.0 / 3.6), 32.85 / 10.0);
+  const double first_step = std::ceil(overlap / 0.01) * 0.01;
+  ASSERT_EQ(sim.crashes().size(), 1U);
+  EXPECT_NEAR(sim.crashes()[0].time, first_step, 1e-9);
+  EXPECT_EQ(sim.crashes()[0].first, 0U);
+  EXPECT_EQ(sim.crashes()[0].second, 1U);
+  EXPECT_TRUE(sim.ended());
+  EXPECT_NEAR(sim.time(), first_step, 1e-9);  // the only planning vehicle crashed: the run ends
+  EXPECT_EQ(sim.state(0).status, agent_status::crashed);
+  EXPECT_EQ(sim.state(1).status, agent_status::crashed);
+  EXPECT_EQ(sim.state(0).speed, 0.0);
+
+  const run_metrics m = sim.metrics(0);
+  EXPECT_TRUE(m.crash);
+  EXPECT_EQ(m.crash_with, "B");
+  EXPECT_NEAR(*m.crash_time_s, first_step, 1e-9);
+  EXPECT_EQ(*m.min_dist_m, 0.0);
+  EXPECT_EQ(m.closest_agent, "B");
+  EXPECT_FALSE(m.ttc_at_min_s.has_value());
+  EXPECT_NEAR(*m.speed_kmh, 40.0, 1e-9);
+  EXPECT_EQ(m.bypass, bypass_side::none);
+  EXPECT_EQ(m.planning_steps, 0U);
+
+  const std::size_t steps = sim.step_index();
+  sim.step();
+  EXPECT_EQ(sim.step_index(), steps);  // no-op once ended
+}
+
+TEST(simulation, a_crashed_vehicle_stops_and_stays_an_obstacle_for_the_others) {
+  scenario s;
+  s.duration = 5.0;
+  // A drives into a wall at x = 20; C follows 12 m behind on the same road and drives into A.
+  s.planning_vehicles.push_back(cruising("A", straight_path({0.0, 0.0}, 0.0, 100.0), 10.0));
+  s.planning_vehicles.push_back(cruising("C", straight_path({-12.0, 0.0}, 0.0, 112.0), 10.0));
+  s.planning_vehicles[0].avoidance = false;
+  s.planning_vehicles[1].avoidance = false;
+  s.static_obstacles.push_back({"wall", {{20.0, -3.0}, {21.0, -3.0}, {21.0, 3.0}, {20.0, 3.0}}});
+  simulation sim(s);
+  run(sim);
+  ASSERT_EQ(sim.crashes().size(), 2U);
+  // A's front (x + 2.25) passes 20 at x > 17.75: t > 1.775 s. C then hits the standing A.
+  EXPECT_NEAR(sim.crashes()[0].time, 1.78, 1e-9);
+  EXPECT_EQ(sim.info(sim.crashes()[0].second).name, "wall");
+  const double a_rear = sim.state(0).pose.position.x - 2.25;
+  // C's front reaches A's rear at (a_rear − 2.25 + 12)/10 s; touching is not overlapping, so the
+  // crash is the step after.
+  EXPECT_NEAR(sim.crashes()[1].time, (std::floor((a_rear - 2.25 + 12.0) / 10.0 / 0.01 + 1e-6) + 1.0) * 0.01, 1e-9);
+  EXPECT_EQ(sim.crashes()[1].first, 0U);
+  EXPECT_EQ(sim.crashes()[1].second, 1U);
+  EXPECT_EQ(sim.metrics(1).crash_with, "A");
+  EXPECT_EQ(sim.state(2).status, agent_status::active);  // static obstacles never crash
+  EXPECT_TRUE(sim.ended());
+  EXPECT_LT(sim.time(), 3.0);
+}
+
+TEST(simulation, metrics_of_a_hand_computed_close_pass) {
+  // A stands 0.5 m right of its path (box x ∈ [−2.25, 2.25], y ∈ [−1.4, 0.4]). A pedestrian walks
+  // south along x = 0 at 1.4 m/s from y = 10.004, turns back at y = 3 (reached at 5.0029 s) and
+  // walks north again. Sampled every 10 ms, its lowest sample is y = 3.004 at t = 5.00 (the next
+  // is y = 3.010): gap 3.004 − 0.4 − 0.35 = 2.254 m. With both velocities frozen then, it would
+  // touch A's roof after 2.254 / 1.4 = 1.61 s.
+  scenario s;
+  s.duration = 8.0;
+  planning_vehicle a = cruising("A", straight_path({-10.0, 0.0}, 0.0, 100.0), 0.0);
+  a.start_arc_length = 10.0;
+  a.start_lateral_offset = -0.5;
+  a.avoidance = false;
+  s.planning_vehicles.push_back(a);
+  pedestrian p;
+  p.name = "P";
+  const std::vector<mm::vec2> walk{{0.0, 10.004}, {0.0, 3.0}, {0.0, 10.0}};
+  p.motion.path = path::polyline(walk);
+  p.motion.speed = speed_profile::constant(1.4);
+  s.pedestrians.push_back(p);
+  simulation sim(s);
+  run(sim);
+  const run_metrics m = sim.metrics(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_NEAR(*m.min_dist_m, 2.254, 1e-9);
+  EXPECT_NEAR(*m.min_dist_time_s, 5.0, 1e-9);
+  EXPECT_EQ(m.closest_agent, "P");
+  ASSERT_TRUE(m.ttc_at_min_s.has_value());
+  EXPECT_NEAR(*m.ttc_at_min_s, 2.254 / 1.4, 1e-5);
+  EXPECT_EQ(m.bypass, bypass_side::right);
+  EXPECT_NEAR(m.lateral_offset_at_min_m, -0.5, 1e-12);
+  EXPECT_DOUBLE_EQ(*m.speed_kmh, 0.0);
+  EXPECT_DOUBLE_EQ(m.max_speed_kmh, 0.0);
+  EXPECT_EQ(m.time_in_brake_s + m.time_in_accel_s, 0.0);
+}
+
+TEST(simulation, a_planning_vehicle_avoids_the_crossing_vehicle_it_would_otherwise_hit) {
+  // The same crossing as the crash test, with the planner on (ADJ, defaults) and a safety
+  // margin of 0.3 m (spec §2). Without a margin the minimal-effort choice grazes B and the core's
+  // 50 ms collision sampling lets a corner clip through: see docs/simulator.md.
+  scenario s = crossing(true);
+  s.duration = 4.5;
+  s.planning_vehicles[0].planner.safety_margin = 0.3;
+  simulation sim(s);
+  run(sim);
+  const run_metrics m = sim.metrics(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_TRUE(sim.crashes().empty());
+  EXPECT_EQ(m.closest_agent, "B");
+  EXPECT_GT(*m.min_dist_m, 0.1);
+  EXPECT_LT(*m.min_dist_m, 1.5);
+  // It yields: brakes (to about 28 km/h), lets B pass first and goes round its tail on the left.
+  EXPECT_GT(m.time_in_brake_s, 1.0);
+  EXPECT_LT(m.min_speed_kmh, 35.0);
+  EXPECT_GT(m.min_speed_kmh, 15.0);
+  EXPECT_EQ(m.bypass, bypass_side::left);
+  EXPECT_GT(*m.min_dist_time_s, 3.6);
+  EXPECT_EQ(m.planning_steps, sim.step_index());  // every step but the last, at which it ended
+  EXPECT_EQ(m.cpu_median_us, 0.0);  // not measured
+}
+
+TEST(simulation, replanning_on_the_planning_input_reproduces_the_decision) {
+  scenario s = crossing(true);
+  simulation sim(s);
+  while (sim.time() < 2.0 - 1e-9) sim.step();
+  ASSERT_TRUE(sim.planned_now(0));
+  const std::optional<mm::plan_input> input = sim.planning_input(0);
+  ASSERT_TRUE(input.has_value());
+  ASSERT_EQ(input->obstacles.size(), 1U);
+  EXPECT_EQ(input->obstacles[0].id, 1U);
+  EXPECT_EQ(input->obstacles[0].kind, mm::obstacle_kind::vehicle);
+  EXPECT_DOUBLE_EQ(input->time, 2.0);
+  const mm::plan_result again = mm::plan(*input);
+  const plan_record& last = *sim.last_plan(0);
+  EXPECT_DOUBLE_EQ(last.time, 2.0);
+  EXPECT_EQ(again.command, last.result.command);
+  EXPECT_EQ(again.mode, last.result.mode);
+  EXPECT_EQ(again.mi_brake, last.result.mi_brake);
+  EXPECT_EQ(again.mi_accelerate, last.result.mi_accelerate);
+  EXPECT_EQ(last.result.mi_brake.size(), 17U);
+  EXPECT_NE(last.result.mode, mm::planning_mode::nominal);  // B is a threat at 2 s
+  EXPECT_DOUBLE_EQ(sim.state(0).acceleration, last.result.command.acceleration);
+  EXPECT_DOUBLE_EQ(sim.state(0).curvature, last.result.command.curvature);
+}
+
+TEST(simulation, planning_every_k_steps_holds_the_command_in_between) {
+  scenario s = crossing(true);
+  s.duration = 0.5;
+  s.planning_vehicles[0].planning_period = 5;
+  simulation sim(s, {true});
+  std::size_t plans = 0;
+  mm::maneuver held;
+  run(sim, [&](const simulation& now) {
+    if (now.ended()) return;
+    EXPECT_EQ(now.planned_now(0), now.step_index() % 5 == 0) << now.step_index();
+    const mm::maneuver applied{now.state(0).acceleration, now.state(0).curvature};
+    if (now.planned_now(0)) {
+      ++plans;
+      held = applied;
+      EXPECT_GT(now.last_plan(0)->cpu_time_us, 0.0);
+    } else {
+      EXPECT_EQ(applied, held);
+    }
+  });
+  EXPECT_EQ(plans, 10U);
+  const run_metrics m = sim.metrics(0);
+  EXPECT_EQ(m.planning_steps, 10U);
+  EXPECT_GT(m.cpu_median_us, 0.0);
+  EXPECT_GE(m.cpu_p99_us, m.cpu_median_us);
+}
+
+TEST(simulation, an_agent_that_reaches_the_end_of_its_path_leaves_and_the_run_ends) {
+  scenario s;
+  s.duration = 10.0;
+  s.planning_vehicles.push_back(cruising("A", straight_path({0.0, 0.0}, 0.0, 20.0), 10.0));
+  s.scripted_vehicles.push_back(scripted("B", straight_path({0.0, 10.0}, 0.0, 5.0), 10.0));
+  simulation sim(s);
+  while (sim.time() < 0.6 - 1e-9) sim.step();
+  EXPECT_EQ(sim.state(1).status, agent_status::finished);
+  EXPECT_FALSE(sim.state(1).present());
+  EXPECT_TRUE(sim.planning_input(0)->obstacles.empty());
+  run(sim);
+  EXPECT_EQ(sim.state(0).status, agent_status::finished);
+  EXPECT_NEAR(sim.time(), 2.0, 0.011);
+}
+
+TEST(simulation, agents_before_their_start_time_are_absent_or_wait_at_their_start) {
+  scenario s;
+  s.duration = 3.0;
+  planning_vehicle a = cruising("A", straight_path({0.0, 0.0}, 0.0, 100.0), 0.0);
+  a.avoidance = false;
+  s.planning_vehicles.push_back(a);
+  scripted_vehicle absent = scripted("late", straight_path({10.0, 10.0}, 0.0, 50.0), 5.0);
+  absent.motion.start_time = 1.0;
+  scripted_vehicle waiting = absent;
+  waiting.name = "waiting";
+  waiting.motion.path = straight_path({10.0, -10.0}, 0.0, 50.0);
+  waiting.motion.before_start = before_start_behaviour::wait;
+  s.scripted_vehicles = {absent, waiting};
+  simulation sim(s);
+  sim.step();
+  EXPECT_EQ(sim.state(1).status, agent_status::not_started);
+  EXPECT_EQ(sim.state(2).status, agent_status::waiting);
+  EXPECT_EQ(sim.state(2).speed, 0.0);
+  ASSERT_EQ(sim.planning_input(0)->obstacles.size(), 1U);  // only the waiting one is seen
+  EXPECT_EQ(sim.planning_input(0)->obstacles[0].id, 2U);
+  while (sim.time() < 2.0 - 1e-9) sim.step();
+  EXPECT_EQ(sim.state(1).status, agent_status::active);
+  EXPECT_NEAR(sim.state(1).pose.position.x, 15.0, 1e-9);  // 1 s after its start at 5 m/s
+  EXPECT_NEAR(sim.state(2).pose.position.x, 15.0, 1e-9);
+  EXPECT_EQ(sim.planning_input(0)->obstacles.size(), 2U);
+}
+
+TEST(simulation, scenario_validation_names_the_agent_and_the_field) {
+  scenario s = crossing(true);
+  EXPECT_FALSE(validation_error(s).has_value());
+
+  scenario bad_speed = s;
+  bad_speed.planning_vehicles[0].desired_speed = -1.0;
+  EXPECT_EQ(validation_error(bad_speed).value(),
+            "planning_vehicles[0] \"A\": desired_speed = -1: expected a finite number ≥ 0 [m/s]");
+  EXPECT_THROW(simulation{bad_speed}, std::invalid_argument);
+
+  scenario same_name = s;
+  same_name.scripted_vehicles[0].name = "A";
+  EXPECT_NE(validation_error(same_name).value().find("scripted_vehicles[0] \"A\": name"), std::string::npos);
+
+  scenario bad_limit = s;
+  bad_limit.planning_vehicles[0].limits.max_deceleration = 0.0;
+  EXPECT_EQ(validation_error(bad_limit).value().rfind("planning_vehicles[0] \"A\": limits.max_deceleration = 0", 0), 0U);
+
+  scenario bad_policy = s;
+  bad_policy.planning_vehicles[0].planner.policy = {mm::forecast_policy_kind::constant, 0.3};
+  EXPECT_EQ(validation_error(bad_policy).value().rfind("planning_vehicles[0] \"A\": planner.policy.constant_forecast_time", 0),
+            0U);
+
+  scenario beyond_path = s;
+  beyond_path.scripted_vehicles[0].motion.start_arc_length = 150.0;
+  EXPECT_EQ(validation_error(beyond_path).value().rfind("scripted_vehicles[0] \"B\": motion.start_arc_length = 150", 0),
+            0U);
+
+  scenario bad_stop = s;
+  bad_stop.scripted_vehicles[0].motion.stop = stop_rule{10.0, 0.0};
+  EXPECT_EQ(validation_error(bad_stop).value(),
+            "scripted_vehicles[0] \"B\": motion.stop.duration = 0: expected a positive finite number [s]");
+
+  scenario concave = s;
+  concave.static_obstacles.push_back({"L", {{0.0, 0.0}, {2.0, 0.0}, {1.0, 0.2}, {1.0, 2.0}}});
+  EXPECT_EQ(validation_error(concave).value().rfind("static_obstacles[0] \"L\": vertices: ", 0), 0U);
+
+  scenario no_path = s;
+  no_path.pedestrians.push_back({"P", {}, 0.35});
+  EXPECT_EQ(validation_error(no_path).value(), "pedestrians[0] \"P\": motion.path: the path is empty");
+
+  scenario bad_step = s;
+  bad_step.time_step = 0.0;
+  EXPECT_EQ(validation_error(bad_step).value(), "scenario: time_step = 0: expected a positive finite number [s]");
+}
+
+}  // namespace
