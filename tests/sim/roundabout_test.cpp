@@ -1,12 +1,12 @@
 #include "mm/sim/roundabout.hpp"
 
-#include "mm/maneuver.hpp"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
+
+#include "mm/maneuver.hpp"
 
 namespace {
 

@@ -111,7 +111,8 @@ class simulation {
   void step();
 
   /// True when the time has reached the duration, or when every planning vehicle (if there is
-  /// one) has crashed or finished its path.
+  /// one) has crashed or finished its path. At the instant the run ends nothing is sensed or
+  /// planned: `planned_now` is false and the tracks hold the previous step's observations.
   bool ended() const;
 
   double time() const;               ///< t_k [s]
