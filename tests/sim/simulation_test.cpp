@@ -231,6 +231,39 @@ TEST(simulation, agents_before_their_start_time_are_absent_or_wait_at_their_star
   EXPECT_EQ(sim.planning_input(0)->obstacles.size(), 2U);
 }
 
+TEST(simulation, a_pedestrian_waits_at_the_kerb_and_a_static_obstacle_is_seen_from_the_start) {
+  scenario s;
+  s.duration = 6.0;
+  planning_vehicle a = cruising("A", straight_path({-10.0, 0.0}, 0.0, 100.0), 0.0);
+  a.start_arc_length = 10.0;
+  a.avoidance = false;
+  s.planning_vehicles.push_back(a);
+  pedestrian p;
+  p.name = "P";
+  p.motion.path = straight_path({1.0, -10.0}, pi / 2.0, 20.0);  // crossing northwards at x = 1
+  p.motion.speed = speed_profile::constant(1.4);
+  p.motion.stop = stop_rule{7.0, std::nullopt};  // the kerb at y = −3, reached after 5 s
+  s.pedestrians.push_back(p);
+  s.static_obstacles.push_back({"box", {{-12.0, 2.0}, {-10.0, 2.0}, {-10.0, 4.0}, {-12.0, 4.0}}});
+  simulation sim(s);
+  const mm::plan_input first = *sim.planning_input(0);
+  ASSERT_EQ(first.obstacles.size(), 1U);  // the box needs one observation, P two
+  EXPECT_EQ(first.obstacles[0].kind, mm::obstacle_kind::static_obstacle);
+  EXPECT_EQ(first.obstacles[0].history.back().pose.position, (mm::vec2{-11.0, 3.0}));
+  EXPECT_EQ(std::get<mm::convex_polygon>(first.obstacles[0].shape).vertices[0], (mm::vec2{-1.0, -1.0}));
+  run(sim);
+  EXPECT_EQ(sim.state(1).status, agent_status::stopped);
+  EXPECT_DOUBLE_EQ(sim.state(1).speed, 0.0);
+  EXPECT_NEAR(sim.state(1).pose.position.y, -3.0, 1e-12);
+  const mm::plan_input last = *sim.planning_input(0);
+  ASSERT_EQ(last.obstacles.size(), 2U);  // in id order: P (1), then the box (2)
+  EXPECT_EQ(last.obstacles[0].id, 1U);
+  EXPECT_EQ(last.obstacles[0].kind, mm::obstacle_kind::pedestrian);
+  EXPECT_DOUBLE_EQ(last.obstacles[0].history.back().speed, 0.0);
+  EXPECT_FALSE(sim.metrics(0).crash);
+  EXPECT_NEAR(*sim.metrics(0).min_dist_m, 3.0 - 0.9 - 0.35, 1e-9);  // P at (1, −3), A's side at y = −0.9
+}
+
 TEST(simulation, scenario_validation_names_the_agent_and_the_field) {
   scenario s = crossing(true);
   EXPECT_FALSE(validation_error(s).has_value());
