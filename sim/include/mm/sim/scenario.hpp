@@ -37,7 +37,9 @@ struct planning_vehicle {
   double desired_speed = 0.0;            ///< v_des [m/s] ≥ 0: the cruise speed, not a cap (spec §3)
   mm::rectangle shape;                   ///< footprint, spec §2 default 4.5 m × 1.8 m
   mm::ego_limits limits;                 ///< a_max, d_max, a_lat_max, R_min, v_cap (spec §3)
-  mm::planner_config planner;            ///< forecast policy, horizons, urgent steering (spec §3–§9)
+  /// Forecast policy, horizons, urgent steering, safety margin (spec §2–§9). With the default
+  /// `safety_margin = 0` the planner grazes obstacles: see docs/simulator.md §12.
+  mm::planner_config planner;
   follower_config follower;              ///< pure pursuit and speed keeping (u_nom, spec §8)
   /// false: apply u_nom without planning — the naive baseline that a scenario compares against.
   /// It still senses (so `simulation::planning_input` works) and is still crash-checked.
