@@ -10,6 +10,9 @@ bool overlaps_at(const ego_state& ego, const maneuver& u, const forecast_obstacl
                  double forecast_time, double t, const collision_window& window) {
   const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
   const pose obstacle_pose = forecast_pose(obstacle.motion, forecast_time, t);
+  // Footprints lie within their bounding discs: apart when the discs are.
+  const double reach = bounding_radius(ego.shape) + bounding_radius(obstacle.shape) + window.margin;
+  if (squared_norm(ego_pose.position - obstacle_pose.position) >= reach * reach) return false;
   return overlaps(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose), window.margin);
 }
 

@@ -22,6 +22,7 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
     for (const maneuver& u : samples.maneuvers) {
       const pose p = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
       poses_.push_back(p);
+      directions_.push_back({std::cos(p.heading), std::sin(p.heading)});
       lo = {std::min(lo.x, p.position.x), std::min(lo.y, p.position.y)};
       hi = {std::max(hi.x, p.position.x), std::max(hi.y, p.position.y)};
     }
@@ -33,48 +34,115 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
     reach_centre_.push_back(centre);
     reach_radius_.push_back(radius);
   }
+  largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, window.horizon, ego.limits.speed_cap);
+  largest_point_speed_ = largest_speed_ * (1.0 + max_curvature(ego.speed, ego.limits) * bounding_radius(ego.shape));
 }
 
 namespace {
 
-/// Adds to `mask` the samples whose footprint at time index k overlaps the obstacle at `where`.
-void add_hits(const ego_sweep& sweep, const forecast_obstacle& obstacle, const pose& where,
-              double reach, std::size_t k, sample_mask& mask) {
+/// Running minimum of every sample's clearance, and the first time index at which each sample
+/// could lower it.
+struct clearance_walk {
+  clearance_set clearance;
+  std::vector<std::size_t> next;
+};
+
+/// What stays the same while walking one obstacle through the sweep.
+struct walk_constants {
+  double reach;         ///< bounding radii of ego and obstacle [m]
+  double margin;        ///< [m]
+  double cap;           ///< [m]
+  double centre_rate;   ///< Lipschitz constant of the reference points' distance [m/s]
+  double distance_rate; ///< Lipschitz constant of the signed distance [m/s]
+  double time_step;     ///< [s]
+};
+
+/// First time index after k at which a quantity `gap` above the target, changing at most at
+/// `rate`, could reach the target.
+std::size_t first_possible(std::size_t k, double gap, double rate, double time_step) {
+  if (rate <= 0.0) return std::numeric_limits<std::size_t>::max();
+  const double steps = gap * (1.0 - 1e-9) / (rate * time_step);
+  if (steps >= 1e9) return std::numeric_limits<std::size_t>::max();
+  return k + static_cast<std::size_t>(steps) + 1;
+}
+
+/// Advances `walk` over time index k, with the obstacle at `where`.
+void advance(const ego_sweep& sweep, const forecast_obstacle& obstacle, const pose& where, const walk_constants& w,
+             std::size_t k, clearance_walk& walk) {
   const vec2 o = where.position;
-  const double far = sweep.reach_radius(k) + reach;
-  if (squared_norm(o - sweep.reach_centre(k)) >= far * far) return;
+  if (norm(o - sweep.reach_centre(k)) - sweep.reach_radius(k) - w.reach - w.margin >= w.cap) return;
   const placed_footprint obstacle_footprint = place(obstacle.shape, where);
-  const double reach2 = reach * reach;
   for (std::size_t m = 0; m < sweep.sample_count(); ++m) {
-    if (mask.test(m)) continue;
+    if (walk.next[m] > k) continue;
+    const double known = std::min(walk.clearance[m], w.cap);
+    if (known <= -w.cap) {
+      walk.next[m] = std::numeric_limits<std::size_t>::max();
+      continue;
+    }
     const pose& p = sweep.at(k, m);
-    if (squared_norm(p.position - o) >= reach2) continue;
-    if (overlaps(place(sweep.ego().shape, p), obstacle_footprint, sweep.window().margin)) mask.set(m);
+    const double bound = norm(p.position - o) - w.reach - w.margin;
+    if (bound >= known) {
+      walk.next[m] = first_possible(k, bound - known, w.centre_rate, w.time_step);
+      continue;
+    }
+    const double d = signed_distance(place(sweep.ego().shape, p.position, sweep.direction(k, m)), obstacle_footprint) - w.margin;
+    walk.clearance[m] = std::min(walk.clearance[m], d);
+    walk.next[m] = first_possible(k, d - std::min(walk.clearance[m], w.cap), w.distance_rate, w.time_step);
   }
 }
 
 }  // namespace
 
-std::vector<sample_mask> collision_sets(const ego_sweep& sweep, const forecast_obstacle& obstacle,
-                                        std::span<const double> forecast_times) {
+std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obstacle& obstacle,
+                                      std::span<const double> forecast_times, double cap) {
   const std::vector<double>& times = sweep.times();
-  const double reach = bounding_radius(sweep.ego().shape) + bounding_radius(obstacle.shape) + sweep.window().margin;
-  std::vector<sample_mask> sets;
-  sets.reserve(forecast_times.size());
-  sample_mask shared(sweep.sample_count());  // hits at times t ≤ τ, where every forecast agrees
-  std::size_t shared_until = 0;              // time indices [0, shared_until) are in `shared`
+  const motion_estimate& motion = obstacle.motion;
+  const double obstacle_radius = bounding_radius(obstacle.shape);
+  const walk_constants w{bounding_radius(sweep.ego().shape) + obstacle_radius,
+                         sweep.window().margin,
+                         cap,
+                         sweep.largest_speed() + motion.speed,
+                         sweep.largest_point_speed() + motion.speed + std::abs(motion.yaw_rate) * obstacle_radius,
+                         sweep.window().time_step};
+  std::vector<clearance_set> result;
+  result.reserve(forecast_times.size());
+  // The walk over the times t ≤ τ, where every forecast agrees; [0, shared_until) is done.
+  clearance_walk shared{clearance_set(sweep.sample_count(), std::numeric_limits<double>::infinity()),
+                        std::vector<std::size_t>(sweep.sample_count(), 0)};
+  std::size_t shared_until = 0;
   for (const double tau : forecast_times) {
     for (; shared_until < times.size() && times[shared_until] <= tau; ++shared_until) {
-      add_hits(sweep, obstacle, forecast_pose(obstacle.motion, tau, times[shared_until]), reach,
-               shared_until, shared);
+      advance(sweep, obstacle, forecast_pose(motion, tau, times[shared_until]), w, shared_until, shared);
     }
-    sample_mask set = shared;
+    clearance_walk walk = shared;
     for (std::size_t k = shared_until; k < times.size(); ++k) {
-      add_hits(sweep, obstacle, forecast_pose(obstacle.motion, tau, times[k]), reach, k, set);
+      advance(sweep, obstacle, forecast_pose(motion, tau, times[k]), w, k, walk);
     }
-    sets.push_back(std::move(set));
+    for (double& c : walk.clearance) c = std::clamp(c, -cap, cap);
+    result.push_back(std::move(walk.clearance));
   }
-  return sets;
+  return result;
+}
+
+std::vector<clearance_set> clearances_reference(const ego_state& ego, const maneuver_samples& samples,
+                                                const forecast_obstacle& obstacle,
+                                                std::span<const double> forecast_times,
+                                                const collision_window& window) {
+  const std::vector<double> times = sample_times(window.duration, window.time_step);
+  std::vector<clearance_set> result;
+  for (const double tau : forecast_times) {
+    clearance_set clearance(samples.size(), std::numeric_limits<double>::infinity());
+    for (std::size_t m = 0; m < samples.size(); ++m) {
+      for (const double t : times) {
+        const pose ego_pose = maneuver_pose(ego.pose, ego.speed, samples.maneuvers[m], t, window.horizon, ego.limits.speed_cap);
+        const placed_footprint e = place(ego.shape, ego_pose);
+        const placed_footprint o = place(obstacle.shape, forecast_pose(obstacle.motion, tau, t));
+        clearance[m] = std::min(clearance[m], signed_distance(e, o) - window.margin);
+      }
+    }
+    result.push_back(std::move(clearance));
+  }
+  return result;
 }
 
 std::vector<sample_mask> collision_sets_reference(const ego_state& ego, const maneuver_samples& samples,

@@ -87,6 +87,22 @@ displacement_set available_displacements(double initial_speed, const ego_limits&
       set.area += set.samples.back().area_weight;
     }
   }
+  const std::size_t kappa_cells = set.curvature_count > 1 ? set.curvature_count - 1 : 1;
+  for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+    const double s0 = distance(set.samples[ia * set.curvature_count].u.acceleration);
+    const double s1 = distance(set.samples[(ia + 1) * set.curvature_count].u.acceleration);
+    for (std::size_t ik = 0; ik < kappa_cells; ++ik) {
+      double weight = 0.0;
+      if (set.max_curvature <= 0.0) {
+        weight = area_element_primitive(s1, 0.0) - area_element_primitive(s0, 0.0);
+      } else if (set.curvature_count == 1) {
+        weight = cell_area(s0, s1, -set.max_curvature, set.max_curvature);
+      } else {
+        weight = cell_area(s0, s1, set.samples[ik].u.curvature, set.samples[ik + 1].u.curvature);
+      }
+      set.cell_weights.push_back(std::max(weight, 0.0));
+    }
+  }
   constexpr double degenerate_area = 1e-12;
   if (set.area <= degenerate_area) {
     set.degenerate = true;

@@ -87,6 +87,26 @@ double separated_core_distance(const placed_footprint& a, const placed_footprint
   return std::sqrt(std::min(squared_vertex_to_boundary(a, b), squared_vertex_to_boundary(b, a)));
 }
 
+/// Penetration depth of two cores whose interiors intersect: the smallest overlap of their
+/// projections over the edge normals (exact for convex polygons), or the depth of a point core.
+double core_penetration(const placed_footprint& a, const placed_footprint& b) {
+  if (a.vertex_count == 1) return std::sqrt(squared_vertex_to_boundary(a, b));
+  if (b.vertex_count == 1) return std::sqrt(squared_vertex_to_boundary(b, a));
+  double depth = std::numeric_limits<double>::infinity();
+  for (const placed_footprint* f : {&a, &b}) {
+    for (std::size_t i = 0; i < f->vertex_count; ++i) {
+      const vec2 edge = f->vertices[(i + 1) % f->vertex_count] - f->vertices[i];
+      const double length = norm(edge);
+      if (length == 0.0) continue;
+      const vec2 axis{-edge.y / length, edge.x / length};
+      const interval pa = project(a, axis);
+      const interval pb = project(b, axis);
+      depth = std::min(depth, std::min(pa.hi - pb.lo, pb.hi - pa.lo));
+    }
+  }
+  return depth;
+}
+
 double polygon_width(const std::vector<vec2>& v) {
   double width = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -103,13 +123,17 @@ double polygon_width(const std::vector<vec2>& v) {
 }  // namespace
 
 placed_footprint place(const footprint& shape, const pose& where) {
+  return place(shape, where.position, {std::cos(where.heading), std::sin(where.heading)});
+}
+
+placed_footprint place(const footprint& shape, vec2 position, vec2 direction) {
   placed_footprint placed;
-  const double c = std::cos(where.heading);
-  const double s = std::sin(where.heading);
+  const double c = direction.x;
+  const double s = direction.y;
   const auto put = [&](const std::vector<vec2>& body) {
     placed.vertex_count = std::min(body.size(), max_polygon_vertices);
     for (std::size_t i = 0; i < placed.vertex_count; ++i) {
-      placed.vertices[i] = where.position + rotated(body[i], c, s);
+      placed.vertices[i] = position + rotated(body[i], c, s);
     }
   };
   if (const auto* r = std::get_if<rectangle>(&shape)) {
@@ -118,13 +142,13 @@ placed_footprint place(const footprint& shape, const pose& where) {
     const vec2 along{c * hl, s * hl};
     const vec2 across{-s * hw, c * hw};
     placed.vertex_count = 4;
-    placed.vertices[0] = where.position + along + across;
-    placed.vertices[1] = where.position - along + across;
-    placed.vertices[2] = where.position - along - across;
-    placed.vertices[3] = where.position + along - across;
+    placed.vertices[0] = position + along + across;
+    placed.vertices[1] = position - along + across;
+    placed.vertices[2] = position - along - across;
+    placed.vertices[3] = position + along - across;
   } else if (const auto* d = std::get_if<disc>(&shape)) {
     placed.vertex_count = 1;
-    placed.vertices[0] = where.position;
+    placed.vertices[0] = position;
     placed.radius = d->radius;
   } else {
     put(std::get<convex_polygon>(shape).vertices);
@@ -195,6 +219,11 @@ bool overlaps(const placed_footprint& a, const placed_footprint& b, double margi
   if (reach <= 0.0) return false;
   const double squared_reach = reach * reach;
   return std::min(squared_vertex_to_boundary(a, b), squared_vertex_to_boundary(b, a)) < squared_reach;
+}
+
+double signed_distance(const placed_footprint& a, const placed_footprint& b) {
+  if (cores_intersect(a, b)) return -core_penetration(a, b) - a.radius - b.radius;
+  return separated_core_distance(a, b) - a.radius - b.radius;
 }
 
 double gap_distance(const placed_footprint& a, const placed_footprint& b) {

@@ -15,7 +15,7 @@ std::size_t adjustable_forecast_index(std::span<const double> mi_brake, std::spa
   for (std::size_t i = 0; i < mi_brake.size(); ++i) {
     if (excluded[i] != 0) continue;
     const double room = std::max(mi_brake[i], mi_accelerate[i]);
-    if (room > best_room) {
+    if (room > best_room + tie_tolerance) {
       best = i;
       best_room = room;
     }
@@ -33,7 +33,7 @@ std::size_t constant_forecast_index(std::span<const double> forecast_times, doub
 }
 
 family select_family(double mi_brake, double mi_accelerate) {
-  return mi_brake >= mi_accelerate ? family::brake : family::accelerate;
+  return mi_brake >= mi_accelerate - tie_tolerance ? family::brake : family::accelerate;
 }
 
 }  // namespace mm

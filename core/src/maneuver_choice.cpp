@@ -1,5 +1,9 @@
 #include "mm/maneuver_choice.hpp"
 
+#include <cmath>
+
+#include "mm/forecast_policy.hpp"
+
 namespace mm {
 
 std::string_view to_string(planning_mode mode) {
@@ -20,17 +24,37 @@ double maneuver_effort(const maneuver& u, const maneuver& nominal, double initia
 
 namespace {
 
+/// Ranking of a candidate: effort first (least, or most when `maximal`), then the smaller
+/// steering change, then the smaller acceleration change; ties within `tie_tolerance`.
+struct candidate_rank {
+  double effort;
+  double steering_change;
+  double acceleration_change;
+
+  bool better_than(const candidate_rank& other, bool maximal) const {
+    const double sign = maximal ? -1.0 : 1.0;
+    if (std::abs(effort - other.effort) > tie_tolerance * (1.0 + std::abs(effort))) {
+      return sign * effort < sign * other.effort;
+    }
+    if (std::abs(steering_change - other.steering_change) > tie_tolerance) return steering_change < other.steering_change;
+    return acceleration_change < other.acceleration_change - tie_tolerance;
+  }
+};
+
 /// The safe candidate of `f` with the least (or, `maximal`, the largest) effort.
 std::optional<std::size_t> extreme_effort_candidate(const choice_input& in, family f, bool maximal) {
   std::optional<std::size_t> best;
-  double best_effort = 0.0;
+  candidate_rank best_rank{};
   for (const index_range r : {in.samples->grid(f), in.samples->nominal_column(f)}) {
     for (std::size_t m = r.begin; m < r.end; ++m) {
       if (in.colliding->test(m)) continue;
-      const double effort = maneuver_effort(in.samples->maneuvers[m], in.nominal, in.initial_speed, in.weights);
-      if (!best || (maximal ? effort > best_effort : effort < best_effort)) {
+      const maneuver& u = in.samples->maneuvers[m];
+      const candidate_rank rank{maneuver_effort(u, in.nominal, in.initial_speed, in.weights),
+                                std::abs(u.curvature - in.nominal.curvature),
+                                std::abs(u.acceleration - in.nominal.acceleration)};
+      if (!best || rank.better_than(best_rank, maximal)) {
         best = m;
-        best_effort = effort;
+        best_rank = rank;
       }
     }
   }
@@ -59,13 +83,20 @@ std::optional<maneuver_decision> choose_maneuver(const choice_input& in) {
   return std::nullopt;
 }
 
-maneuver_decision near_crash_maneuver(const maneuver_samples& samples, std::span<const double> first_collision) {
+maneuver_decision near_crash_maneuver(const maneuver_samples& samples, std::span<const double> first_collision,
+                                      double nominal_curvature) {
   std::size_t best = 0;
+  const auto steering_change = [&](std::size_t m) { return std::abs(samples.maneuvers[m].curvature - nominal_curvature); };
   for (std::size_t m = 1; m < samples.size(); ++m) {
-    const bool later = first_collision[m] > first_collision[best];
-    const bool as_late_braking_harder = first_collision[m] == first_collision[best] &&
-                                        samples.maneuvers[m].acceleration < samples.maneuvers[best].acceleration;
-    if (later || as_late_braking_harder) best = m;
+    const maneuver& u = samples.maneuvers[m];
+    const maneuver& b = samples.maneuvers[best];
+    if (first_collision[m] != first_collision[best]) {
+      if (first_collision[m] > first_collision[best]) best = m;
+    } else if (u.acceleration != b.acceleration) {
+      if (u.acceleration < b.acceleration) best = m;
+    } else if (steering_change(m) < steering_change(best) - tie_tolerance) {
+      best = m;
+    }
   }
   return {samples.maneuvers[best], planning_mode::near_crash, best};
 }

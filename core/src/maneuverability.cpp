@@ -1,6 +1,9 @@
 #include "mm/maneuverability.hpp"
 
 #include <algorithm>
+#include <array>
+
+#include "mm/geometry.hpp"
 
 namespace mm {
 
@@ -19,6 +22,76 @@ double maneuverability_index(const maneuver_samples& samples, family f, const sa
 maneuverability_pair maneuverability_indices(const maneuver_samples& samples, const sample_mask& colliding) {
   return {maneuverability_index(samples, family::brake, colliding),
           maneuverability_index(samples, family::accelerate, colliding)};
+}
+
+double positive_fraction(double c0, double c1) {
+  const bool p0 = c0 > 0.0;
+  const bool p1 = c1 > 0.0;
+  if (p0 == p1) return p0 ? 1.0 : 0.0;
+  const double t = c0 / (c0 - c1);  // where the interpolant crosses zero
+  return p0 ? t : 1.0 - t;
+}
+
+double positive_fraction(double c00, double c10, double c01, double c11) {
+  // Corners counter-clockwise.
+  const std::array<vec2, 4> p{vec2{0.0, 0.0}, vec2{1.0, 0.0}, vec2{1.0, 1.0}, vec2{0.0, 1.0}};
+  const std::array<double, 4> c{c00, c10, c11, c01};
+  const auto positive = [&](std::size_t i) { return c[i] > 0.0; };
+  const auto crossing = [&](std::size_t i) {
+    const std::size_t k = (i + 1) % 4;
+    return p[i] + (c[i] / (c[i] - c[k])) * (p[k] - p[i]);
+  };
+  const bool saddle = positive(0) == positive(2) && positive(1) == positive(3) && positive(0) != positive(1);
+  if (saddle) {
+    // Each corner of the diagonal is cut off by the segment between the crossings on its edges.
+    const auto corner_triangle = [&](std::size_t i) {
+      const std::size_t before = (i + 3) % 4;
+      return 0.5 * norm(crossing(i) - p[i]) * norm(crossing(before) - p[i]);
+    };
+    const double centre = 0.25 * (c00 + c10 + c01 + c11);
+    const std::size_t first_positive = positive(0) ? 0 : 1;
+    const std::size_t first_negative = 1 - first_positive;
+    if (centre > 0.0) return 1.0 - corner_triangle(first_negative) - corner_triangle(first_negative + 2);
+    return corner_triangle(first_positive) + corner_triangle(first_positive + 2);
+  }
+  std::array<vec2, 8> polygon{};
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (positive(i)) polygon[n++] = p[i];
+    if (positive(i) != positive((i + 1) % 4)) polygon[n++] = crossing(i);
+  }
+  double twice_area = 0.0;
+  for (std::size_t i = 0; i < n; ++i) twice_area += cross(polygon[i], polygon[(i + 1) % n]);
+  return std::clamp(0.5 * twice_area, 0.0, 1.0);
+}
+
+double maneuverability_index(const displacement_set& set, std::span<const double> clearance) {
+  if (set.degenerate) {
+    std::size_t safe = 0;
+    for (const double c : clearance) safe += c > 0.0 ? 1 : 0;
+    return static_cast<double>(safe) / static_cast<double>(clearance.size());
+  }
+  const std::size_t columns = set.curvature_count;
+  double total = 0.0;
+  double safe = 0.0;
+  for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+    if (columns == 1) {
+      const double w = set.cell_weights[ia];
+      total += w;
+      safe += w * positive_fraction(clearance[ia], clearance[ia + 1]);
+      continue;
+    }
+    for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
+      const double w = set.cell_weights[ia * (columns - 1) + ik];
+      const std::size_t lower = ia * columns + ik;
+      const std::size_t upper = lower + columns;
+      total += w;
+      // x along κ, y along a.
+      safe += w * positive_fraction(clearance[lower], clearance[lower + 1], clearance[upper], clearance[upper + 1]);
+    }
+  }
+  if (total <= 0.0) return 1.0;
+  return std::clamp(safe / total, 0.0, 1.0);
 }
 
 std::vector<std::uint8_t> excluded_forecast_times(std::span<const double> forecast_times,

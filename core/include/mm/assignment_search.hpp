@@ -2,12 +2,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <span>
 #include <string_view>
 #include <vector>
-
-#include "mm/maneuver_samples.hpp"
-#include "mm/sample_mask.hpp"
 
 namespace mm {
 
@@ -19,38 +17,33 @@ enum class assignment_search_kind : std::uint8_t {
 
 std::string_view to_string(assignment_search_kind kind);
 
-/// The search space of spec §9: obstacle j may use forecast index i ∈ candidates[j]; its
-/// collision set under τ_i is collision_sets[j][i]. The safe sets are the samples outside the
-/// union of the chosen collision sets.
+/// The search of spec §9: obstacle j may use forecast index i ∈ candidates[j] (ascending, starting
+/// at 0); `room` is max(MI−, MI+) when obstacle j uses index[j] for all j, `room_alone(j, i)` the
+/// same with obstacle j alone at index i.
 struct assignment_problem {
-  const maneuver_samples* samples = nullptr;
-  std::vector<std::vector<sample_mask>> collision_sets;  ///< [obstacle][forecast index]
-  std::vector<std::vector<std::size_t>> candidates;      ///< [obstacle] allowed indices, ascending, non-empty
+  std::vector<std::vector<std::size_t>> candidates;
+  std::function<double(std::span<const std::size_t> index)> room;
+  std::function<double(std::size_t obstacle, std::size_t index)> room_alone;
 };
 
 /// A forecast index per obstacle and the room it leaves.
 struct forecast_assignment {
   std::vector<std::size_t> forecast_index;
-  double room = 1.0;             ///< max(MI−, MI+) of the union of the chosen collision sets
-  std::size_t evaluations = 0;   ///< assignments whose room was computed
+  double room = 1.0;            ///< max(MI−, MI+) under the assignment
+  std::size_t evaluations = 0;  ///< calls of `room` and `room_alone`
 };
 
-/// The union of the collision sets chosen by `forecast_index`.
-sample_mask colliding_under(const assignment_problem& problem, std::span<const std::size_t> forecast_index);
-
-/// max(MI−, MI+) under the assignment: the objective of the search.
-double assignment_room(const assignment_problem& problem, std::span<const std::size_t> forecast_index);
-
-/// Number of assignments of the problem: ∏ |candidates[j]| (saturates at SIZE_MAX).
+/// Number of assignments: ∏ |candidates[j]| (saturates at SIZE_MAX).
 std::size_t assignment_count(const assignment_problem& problem);
 
-/// Reference (spec §9): every assignment; the largest room wins, ties to the lexicographically
-/// smallest index vector (so one obstacle gives the ADJ choice of spec §7).
+/// Reference (spec §9): every assignment; the largest room wins, ties (within `tie_tolerance`) to
+/// the lexicographically smallest index vector (so one obstacle gives the ADJ choice of spec §7).
 forecast_assignment exhaustive_assignment_search(const assignment_problem& problem);
 
-/// Fast search (spec §9): coordinate ascent (each obstacle in turn takes its best forecast time
-/// with the others fixed, until no obstacle improves) from two starts: every obstacle at its
-/// individually best forecast time, and the best common forecast time. The better result wins.
+/// Fast search (spec §9): coordinate ascent — each obstacle in turn takes its best forecast time
+/// with the others fixed, moving only on a strict improvement, until a sweep changes nothing —
+/// from two starts: every obstacle at its individually best forecast time, and the best common
+/// forecast time (each obstacle capped to its candidates). The better result wins.
 forecast_assignment coordinate_ascent_assignment_search(const assignment_problem& problem);
 
 }  // namespace mm

@@ -9,6 +9,11 @@
 
 namespace mm {
 
+/// Signed clearance of every sample: the smallest signed distance − margin [m] between the ego
+/// executing the sample and an obstacle over the collision window. Negative ⇔ the sample collides
+/// [CSS]; the magnitude lets estimators place the boundary between samples. Clamped to ±cap.
+using clearance_set = std::vector<double>;
+
 /// The ego's trajectories for every sample of a `maneuver_samples`, at every sample time of the
 /// collision window, computed once per planning step and shared by all obstacles and forecast times.
 class ego_sweep {
@@ -21,6 +26,12 @@ class ego_sweep {
   const std::vector<double>& times() const { return times_; }
   /// Pose of sample m at time index k.
   const pose& at(std::size_t k, std::size_t m) const { return poses_[k * sample_count_ + m]; }
+  /// (cos θ, sin θ) of that pose's heading.
+  vec2 direction(std::size_t k, std::size_t m) const { return directions_[k * sample_count_ + m]; }
+  /// Largest speed of any point of the ego footprint over the window [m/s]: v_max (1 + κ_max R).
+  double largest_point_speed() const { return largest_point_speed_; }
+  /// Largest speed of the ego's reference point over the window [m/s].
+  double largest_speed() const { return largest_speed_; }
 
   /// A disc containing the reference points of all samples at time index k.
   vec2 reach_centre(std::size_t k) const { return reach_centre_[k]; }
@@ -32,23 +43,38 @@ class ego_sweep {
   std::size_t sample_count_;
   std::vector<double> times_;
   std::vector<pose> poses_;
+  std::vector<vec2> directions_;
+  double largest_speed_ = 0.0;
+  double largest_point_speed_ = 0.0;
   std::vector<vec2> reach_centre_;
   std::vector<double> reach_radius_;
 };
 
-/// Collision sets [CSS](τ_i) of one obstacle for every forecast time (spec §5): mask i holds the
-/// samples whose trajectory overlaps the obstacle, forecast with `forecast_times[i]`, at a sample
-/// time of the sweep. `forecast_times` must be ascending.
+/// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed
+/// clearance of sample m with the obstacle forecast with `forecast_times[i]` (ascending), over
+/// the sample times of the sweep, clamped to [−cap, cap].
 ///
-/// Fast path: forecasts agree up to τ, so the hits of t ≤ τ_i are accumulated once and shared by
-/// all larger τ; a disc around the whole sweep and a disc per sample reject far pairs before the
-/// exact footprint test; a sample already known to collide is not tested again. Same result, bit
-/// for bit, as `collision_sets_reference` on the same samples and time step.
-std::vector<sample_mask> collision_sets(const ego_sweep& sweep, const forecast_obstacle& obstacle,
-                                        std::span<const double> forecast_times);
+/// Fast path, each step exact for the sampled times:
+/// - forecasts agree up to τ, so the minimum over t ≤ τ_i is accumulated once and shared by all
+///   larger τ;
+/// - a time is skipped for every sample when the obstacle is beyond the cap from a disc holding
+///   all of the sweep's reference points;
+/// - a (sample, time) pair is skipped when a lower bound — the distance of bounding discs, or the
+///   last clearance computed minus the largest relative speed of any two footprint points times
+///   the elapsed time (the signed distance is Lipschitz in time) — shows it cannot lower the
+///   sample's clearance below what is known, or below −cap.
+/// Equal, bit for bit, to `clearances_reference` clamped to ±cap.
+std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obstacle& obstacle,
+                                      std::span<const double> forecast_times, double cap);
 
-/// The reference for `collision_sets` (spec §11): each sample and forecast time on its own, the
-/// exact test at every sample time of `window`.
+/// The reference for `clearances`: every sample, forecast time and sample time, no pruning, no cap.
+std::vector<clearance_set> clearances_reference(const ego_state& ego, const maneuver_samples& samples,
+                                                const forecast_obstacle& obstacle,
+                                                std::span<const double> forecast_times,
+                                                const collision_window& window);
+
+/// Collision sets [CSS](τ_i) by brute force (the reference planner's, spec §11): mask i holds the
+/// samples for which `maneuver_collides` with the obstacle forecast with `forecast_times[i]`.
 std::vector<sample_mask> collision_sets_reference(const ego_state& ego, const maneuver_samples& samples,
                                                   const forecast_obstacle& obstacle,
                                                   std::span<const double> forecast_times,

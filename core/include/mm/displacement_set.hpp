@@ -54,6 +54,10 @@ struct displacement_set {
   std::size_t acceleration_count = 0;
   std::size_t curvature_count = 0;
   std::vector<displacement_sample> samples;
+  /// Areas of the cells *between* neighbouring nodes, for interpolating estimators: cell (i, j)
+  /// spans nodes i..i+1 in a and j..j+1 in κ, index i·(curvature_count − 1) + j; with a single
+  /// curvature node, cell i spans nodes i..i+1 and the whole κ range. They sum to `area`.
+  std::vector<double> cell_weights;
 };
 
 /// The sampled set of displacements reachable with maneuvers of `fam` within `horizon` [T_h, s]

@@ -45,6 +45,10 @@ struct placed_footprint {
 /// `shape` placed at `where`.
 placed_footprint place(const footprint& shape, const pose& where);
 
+/// `shape` placed at `position` with heading direction (cos θ, sin θ) = `direction`; equal to
+/// `place(shape, {position, θ})` bit for bit when `direction` is {cos θ, sin θ}.
+placed_footprint place(const footprint& shape, vec2 position, vec2 direction);
+
 /// Radius of the smallest disc about the reference point that contains the footprint [m].
 double bounding_radius(const footprint& shape);
 
@@ -62,5 +66,9 @@ bool overlaps(const placed_footprint& a, const placed_footprint& b, double margi
 
 /// Euclidean distance between the footprints [m]; 0 when they overlap.
 double gap_distance(const placed_footprint& a, const placed_footprint& b);
+
+/// Signed distance [m]: the gap when apart, minus the penetration depth (the shortest translation
+/// that separates them) when they overlap. Continuous, and `overlaps(a, b, m)` ⇔ `signed_distance(a, b) < m`.
+double signed_distance(const placed_footprint& a, const placed_footprint& b);
 
 }  // namespace mm

@@ -22,8 +22,12 @@ struct forecast_policy {
 
 std::string_view to_string(forecast_policy_kind kind);
 
-/// ADJ (spec §7): ī = argmax over non-excluded i of f(i) = max(MI−(τ_i), MI+(τ_i)); ties go to
-/// the smallest τ. Index 0 is never excluded, so a choice always exists.
+/// Rooms (and indices) closer than this are ties: the spec's tie rules must not depend on the
+/// last bits of a floating-point sum, or rotating a scene would change the choice.
+inline constexpr double tie_tolerance = 1e-9;
+
+/// ADJ (spec §7): ī = argmax over non-excluded i of f(i) = max(MI−(τ_i), MI+(τ_i)); ties (within
+/// `tie_tolerance`) go to the smallest τ. Index 0 is never excluded, so a choice always exists.
 std::size_t adjustable_forecast_index(std::span<const double> mi_brake, std::span<const double> mi_accelerate,
                                       std::span<const std::uint8_t> excluded);
 
@@ -31,7 +35,8 @@ std::size_t adjustable_forecast_index(std::span<const double> mi_brake, std::spa
 std::size_t constant_forecast_index(std::span<const double> forecast_times, double forecast_time,
                                     std::span<const std::uint8_t> excluded);
 
-/// Brake-and-steer when MI− ≥ MI+ (ties go to braking), else accelerate-and-steer (spec §7).
+/// Brake-and-steer when MI− ≥ MI+ (ties, within `tie_tolerance`, go to braking), else
+/// accelerate-and-steer (spec §7).
 family select_family(double mi_brake, double mi_accelerate);
 
 }  // namespace mm

@@ -52,11 +52,14 @@ struct maneuver_decision {
 /// Rules 1–3 of spec §8. Candidates of a family are its grid and its nominal-curvature column.
 /// 1. u_nom if safe; 2. the safe candidate of minimal J in the selected family, else in the
 /// other; 3. with urgent steering, when no nominal-curvature candidate of either family is safe,
-/// maximal J instead. Ties go to the first sample. Nothing when no candidate is safe (rule 4).
+/// maximal J instead. Ties in J go to the smaller steering change |κ − κ_nom|, then to the
+/// smaller acceleration change, then to the first sample. Nothing when no candidate is safe (rule 4).
 std::optional<maneuver_decision> choose_maneuver(const choice_input& input);
 
 /// Rule 4 of spec §8 (near-crash): the sample of latest first collision time
-/// (`first_collision[m]`, ∞ for none), ties to stronger braking, then to the first sample.
-maneuver_decision near_crash_maneuver(const maneuver_samples& samples, std::span<const double> first_collision);
+/// (`first_collision[m]`, ∞ for none), ties to stronger braking, then to the smaller steering
+/// change from `nominal_curvature`, then to the first sample.
+maneuver_decision near_crash_maneuver(const maneuver_samples& samples, std::span<const double> first_collision,
+                                      double nominal_curvature);
 
 }  // namespace mm

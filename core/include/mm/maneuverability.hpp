@@ -22,6 +22,22 @@ struct maneuverability_pair {
 
 maneuverability_pair maneuverability_indices(const maneuver_samples& samples, const sample_mask& colliding);
 
+/// Share of the unit square where the clearance, interpolated bilinearly from its corner values,
+/// is positive — the marching-squares polygon, with the centre value deciding saddles.
+/// Corners: c00 at (0, 0), c10 at (1, 0), c01 at (0, 1), c11 at (1, 1).
+double positive_fraction(double c00, double c10, double c01, double c11);
+
+/// Share of [0, 1] where the linear interpolant of c0 (at 0) and c1 (at 1) is positive.
+double positive_fraction(double c0, double c1);
+
+/// Maneuverability Index from the signed clearances of the family's nodes (spec §6, the fast
+/// estimator): MI = Σ_cells W_cell · positive_fraction(corners) / Σ_cells W_cell over the cells
+/// between nodes (`displacement_set::cell_weights`). The safe/unsafe boundary is located between
+/// nodes by linear interpolation instead of at the half-way line, which makes the error second
+/// order in the node spacing. `clearance[k]` belongs to `set.samples[k]`; positive is safe. A
+/// degenerate set counts its safe nodes.
+double maneuverability_index(const displacement_set& set, std::span<const double> clearance);
+
 /// Excluded forecast times (spec §6): τ_i > TTC, except τ_0 = 0 which is never excluded.
 std::vector<std::uint8_t> excluded_forecast_times(std::span<const double> forecast_times,
                                                   double time_to_collision);

@@ -1,0 +1,115 @@
+#include "mm/maneuverability.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+namespace mm {
+namespace {
+
+TEST(maneuverability, positive_fraction_of_a_straight_boundary_is_exact) {
+  // Clearance c(x, y) = x − 0.3: positive on 70 % of the square.
+  EXPECT_NEAR(positive_fraction(-0.3, 0.7, -0.3, 0.7), 0.7, 1e-12);
+  // c = 0.2 + x − y: negative on the triangle {y > x + 0.2} with legs 0.8, area 0.32.
+  EXPECT_NEAR(positive_fraction(0.2, 1.2, -0.8, 0.2), 1.0 - 0.32, 1e-12);
+  EXPECT_EQ(positive_fraction(1.0, 2.0, 3.0, 0.5), 1.0);
+  EXPECT_EQ(positive_fraction(-1.0, -2.0, 0.0, -0.5), 0.0);
+  EXPECT_NEAR(positive_fraction(-1.0, 3.0), 0.75, 1e-12);
+  EXPECT_NEAR(positive_fraction(2.0, -2.0), 0.5, 1e-12);
+}
+
+TEST(maneuverability, positive_fraction_resolves_saddles_by_the_centre_value) {
+  // Positive on the (0,0)–(1,1) diagonal, negative on the other: the centre decides.
+  const double connected = positive_fraction(1.0, -0.2, -0.2, 1.0);  // centre 0.4 > 0
+  const double split = positive_fraction(0.2, -1.0, -1.0, 0.2);      // centre −0.4 < 0
+  EXPECT_GT(connected, 0.5);
+  EXPECT_LT(split, 0.5);
+  // Split: two corner triangles with legs 0.2/1.2 each.
+  EXPECT_NEAR(split, 2.0 * 0.5 * (0.2 / 1.2) * (0.2 / 1.2), 1e-12);
+  EXPECT_NEAR(connected, 1.0 - 2.0 * 0.5 * (0.2 / 1.2) * (0.2 / 1.2), 1e-12);
+}
+
+TEST(maneuverability, positive_fraction_is_symmetric_under_reflections_of_the_square) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> value(-1.0, 1.0);
+  for (int trial = 0; trial < 1000; ++trial) {
+    const double a = value(rng), b = value(rng), c = value(rng), d = value(rng);
+    const double f = positive_fraction(a, b, c, d);
+    EXPECT_GE(f, 0.0);
+    EXPECT_LE(f, 1.0);
+    EXPECT_NEAR(f, positive_fraction(b, a, d, c), 1e-12);  // x ↦ 1 − x
+    EXPECT_NEAR(f, positive_fraction(c, d, a, b), 1e-12);  // y ↦ 1 − y
+    EXPECT_NEAR(f, positive_fraction(a, c, b, d), 1e-12);  // x ↔ y
+    if (a != 0.0 && b != 0.0 && c != 0.0 && d != 0.0 && (a + b + c + d) != 0.0) {
+      EXPECT_NEAR(f + positive_fraction(-a, -b, -c, -d), 1.0, 1e-12) << "complement";
+    }
+  }
+}
+
+/// Clearances of a displacement set's nodes from a function of (a, κ).
+template <class Clearance>
+std::vector<double> clearance_of(const displacement_set& set, Clearance c) {
+  std::vector<double> values;
+  for (const displacement_sample& s : set.samples) values.push_back(c(s.u));
+  return values;
+}
+
+TEST(maneuverability, interpolated_index_places_a_boundary_between_nodes_where_counting_cannot) {
+  ego_state ego;
+  ego.speed = 10.0;
+  const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, {11, 15});
+  const displacement_set& brake = samples.brake;
+  // Collision for a > −2.35 m/s²: the exact share is the area of the displacements of a ≤ −2.35.
+  const auto c = clearance_of(brake, [](const maneuver& u) { return -2.35 - u.acceleration; });
+  const double s_lo = travelled_distance(10.0, -7.0, 1.0, 30.0);
+  const double s_cut = travelled_distance(10.0, -2.35, 1.0, 30.0);
+  const double s_hi = 10.0;
+  // Area between two fronts s0 < s1 of the sector: ∫∫ dA; the κ range is symmetric.
+  const auto area = [&](double s0, double s1) {
+    double sum = 0.0;
+    constexpr int n = 20000;
+    for (int i = 0; i < n; ++i) {
+      const double kappa = -brake.max_curvature + (i + 0.5) * 2.0 * brake.max_curvature / n;
+      sum += area_element_primitive(s1, kappa) - area_element_primitive(s0, kappa);
+    }
+    return sum * 2.0 * brake.max_curvature / n;
+  };
+  const double exact = area(s_lo, s_cut) / area(s_lo, s_hi);
+  const double interpolated = maneuverability_index(brake, c);
+  sample_mask colliding(samples.size());
+  for (std::size_t m = 0; m < brake.samples.size(); ++m) {
+    if (c[m] <= 0.0) colliding.set(m);
+  }
+  const double counted = maneuverability_index(samples, family::brake, colliding);
+  EXPECT_NEAR(interpolated, exact, 0.004);
+  EXPECT_GT(std::abs(counted - exact), 0.01) << "node counting puts the boundary half-way at −2.1 or −2.8";
+}
+
+TEST(maneuverability, degenerate_set_counts_its_safe_nodes) {
+  ego_state stopped;
+  const maneuver_samples samples = sample_maneuvers(stopped, 0.0, 1.0, {5, 3});
+  ASSERT_TRUE(samples.brake.degenerate);
+  EXPECT_EQ(maneuverability_index(samples.brake, std::vector<double>(15, 0.4)), 1.0);
+  EXPECT_EQ(maneuverability_index(samples.brake, std::vector<double>(15, -0.4)), 0.0);
+  sample_mask none(samples.size());
+  EXPECT_EQ(maneuverability_indices(samples, none).brake, 1.0);
+}
+
+TEST(maneuverability, counting_index_is_the_safe_share_of_the_node_weights) {
+  ego_state ego;
+  ego.speed = 8.0;
+  const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, {5, 5});
+  sample_mask colliding(samples.size());
+  const index_range accel = samples.grid(family::accelerate);
+  double unsafe = 0.0;
+  for (std::size_t m = accel.begin; m < accel.end; m += 3) {
+    colliding.set(m);
+    unsafe += samples.area_weights[m];
+  }
+  const maneuverability_pair mi = maneuverability_indices(samples, colliding);
+  EXPECT_EQ(mi.brake, 1.0);
+  EXPECT_NEAR(mi.accelerate, 1.0 - unsafe / samples.total_weight(family::accelerate), 1e-12);
+}
+
+}  // namespace
+}  // namespace mm

@@ -1,0 +1,123 @@
+// Randomized properties of the planner (run with --seed=N --count=N), and the fast planner
+// against the reference planner (spec §11).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "mm/collision.hpp"
+#include "mm/reference_planner.hpp"
+#include "property.hpp"
+#include "random_scenes.hpp"
+
+namespace mm {
+namespace {
+
+/// A random scene with random planner settings.
+plan_input random_setting(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> obstacles(0, 3);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  testing::scene_options options;
+  options.obstacles = static_cast<std::size_t>(obstacles(rng));
+  options.sensor_noise = unit(rng) < 0.5;
+  plan_input in = testing::random_scene(rng, options);
+  if (unit(rng) < 0.4) {
+    in.config.policy = {forecast_policy_kind::constant, 0.5 * std::floor(unit(rng) * 5.0)};
+  }
+  in.config.urgent_steering = unit(rng) < 0.3;
+  in.config.safety_margin = unit(rng) < 0.3 ? 0.5 * unit(rng) : 0.0;
+  if (unit(rng) < 0.1) in.ego.limits.steering = false;
+  return in;
+}
+
+TEST(planner_properties, every_result_is_finite_bounded_and_consistent) {
+  std::mt19937_64 rng(testing::property_seed());
+  const std::size_t count = testing::property_count(300);
+  std::size_t avoiding = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = random_setting(rng);
+    const plan_result r = plan(in);
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    ASSERT_TRUE(r.ok()) << r.error;
+    const ego_limits& l = in.ego.limits;
+    ASSERT_TRUE(std::isfinite(r.command.acceleration) && std::isfinite(r.command.curvature));
+    EXPECT_GE(r.command.acceleration, -l.max_deceleration);
+    EXPECT_LE(r.command.acceleration, l.max_acceleration);
+    EXPECT_LE(std::abs(r.command.curvature), max_curvature(in.ego.speed, l));
+    ASSERT_EQ(r.mi_brake.size(), r.forecast_times.size());
+    ASSERT_EQ(r.mi_accelerate.size(), r.forecast_times.size());
+    ASSERT_EQ(r.excluded.size(), r.forecast_times.size());
+    for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+      EXPECT_TRUE(r.mi_brake[i] >= 0.0 && r.mi_brake[i] <= 1.0) << r.mi_brake[i];
+      EXPECT_TRUE(r.mi_accelerate[i] >= 0.0 && r.mi_accelerate[i] <= 1.0) << r.mi_accelerate[i];
+    }
+    EXPECT_EQ(r.excluded[0], 0);
+    ASSERT_LT(r.forecast_index, r.forecast_times.size());
+    EXPECT_EQ(r.forecast_time, r.forecast_times[r.forecast_index]) << "τ̄ on the grid";
+    EXPECT_EQ(r.excluded[r.forecast_index], 0) << "τ̄ not excluded";
+    EXPECT_FALSE(std::isnan(r.time_to_collision));
+    EXPECT_GE(r.time_to_collision, 0.0);
+    EXPECT_TRUE(r.mi_brake_selected >= 0.0 && r.mi_brake_selected <= 1.0);
+    EXPECT_TRUE(r.mi_accelerate_selected >= 0.0 && r.mi_accelerate_selected <= 1.0);
+    if (r.mode == planning_mode::nominal) {
+      EXPECT_EQ(r.command, clamp_to_limits(in.nominal, in.ego.speed, l));
+    } else {
+      ++avoiding;
+    }
+    if (in.config.policy.kind == forecast_policy_kind::constant && r.forecast_time < in.config.policy.constant_forecast_time) {
+      EXPECT_GT(r.forecast_time + in.config.forecast_step, r.time_to_collision) << "capped only by TTC";
+    }
+    ASSERT_EQ(r.obstacles.size(), in.obstacles.size());
+  }
+  EXPECT_GT(avoiding, count / 5) << "most random scenes should need avoiding, or this test checks little";
+}
+
+TEST(planner_properties, the_same_input_gives_the_same_result) {
+  std::mt19937_64 rng(testing::property_seed() + 5);
+  for (std::size_t trial = 0; trial < testing::property_count(40); ++trial) {
+    const plan_input in = random_setting(rng);
+    const plan_result a = plan(in);
+    const plan_result b = plan(in);
+    EXPECT_EQ(a.command, b.command);
+    EXPECT_EQ(a.mi_brake, b.mi_brake);
+    EXPECT_EQ(a.mi_accelerate, b.mi_accelerate);
+    EXPECT_EQ(a.forecast_index, b.forecast_index);
+  }
+}
+
+/// Margin between the best and the second-best forecast time of ADJ.
+double adjustable_margin(const plan_result& r) {
+  std::vector<double> rooms;
+  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+    if (!r.excluded[i]) rooms.push_back(std::max(r.mi_brake[i], r.mi_accelerate[i]));
+  }
+  std::sort(rooms.rbegin(), rooms.rend());
+  return rooms.size() < 2 ? 1.0 : rooms[0] - rooms[1];
+}
+
+TEST(planner_properties, fast_planner_agrees_with_the_reference_within_the_accuracy_bound) {
+  std::mt19937_64 rng(testing::property_seed() + 9);
+  const std::size_t count = testing::property_count(6);
+  std::size_t compared = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = testing::random_scene(rng, {1, trial % 2 == 1});
+    const plan_result fast = plan(in);
+    const plan_result reference = plan_reference(in);
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    ASSERT_TRUE(fast.ok() && reference.ok());
+    EXPECT_EQ(fast.time_to_collision == no_collision, reference.time_to_collision == no_collision);
+    for (std::size_t i = 0; i < fast.forecast_times.size(); ++i) {
+      EXPECT_NEAR(fast.mi_brake[i], reference.mi_brake[i], 0.02) << "tau " << fast.forecast_times[i];
+      EXPECT_NEAR(fast.mi_accelerate[i], reference.mi_accelerate[i], 0.02) << "tau " << fast.forecast_times[i];
+      compared += reference.mi_brake[i] < 1.0 || reference.mi_accelerate[i] < 1.0 ? 1 : 0;
+    }
+    if (adjustable_margin(reference) > 0.02) {
+      EXPECT_EQ(fast.forecast_index, reference.forecast_index);
+      EXPECT_EQ(fast.selected_family, reference.selected_family);
+    }
+  }
+  EXPECT_GT(compared, 0u) << "the scenes must interact for the comparison to mean anything";
+}
+
+}  // namespace
+}  // namespace mm

@@ -1,0 +1,319 @@
+#include "mm/planner.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "mm/collision.hpp"
+#include "mm/reference_planner.hpp"
+#include "random_scenes.hpp"
+
+namespace mm {
+namespace {
+
+constexpr double pi = std::numbers::pi;
+
+/// The ego driving east at `speed` from the origin, wanting to keep going straight.
+plan_input ego_only(double speed) {
+  plan_input in;
+  in.time = 1.0;
+  in.ego.pose = {{0.0, 0.0}, 0.0};
+  in.ego.speed = speed;
+  in.nominal = {0.0, 0.0};
+  return in;
+}
+
+/// A vehicle observed for 0.5 s, now at `at`, moving with constant speed and yaw rate.
+obstacle_track vehicle(std::uint32_t id, pose at, double speed, double yaw_rate, double now) {
+  obstacle_track track;
+  track.id = id;
+  track.history = testing::ctrv_history(at, speed, yaw_rate, now);
+  return track;
+}
+
+/// The ego at 40 km/h and a car from the north at 36 km/h, timed to collide (paper Fig. 1).
+plan_input crossing_scene() {
+  plan_input in = ego_only(40.0 / 3.6);
+  in.obstacles.push_back(vehicle(1, {{22.0, 20.0}, -pi / 2.0}, 10.0, 0.0, in.time));
+  return in;
+}
+
+void expect_all_room(const plan_result& r) {
+  ASSERT_TRUE(r.ok()) << r.error;
+  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+    EXPECT_EQ(r.mi_brake[i], 1.0) << i;
+    EXPECT_EQ(r.mi_accelerate[i], 1.0) << i;
+    EXPECT_EQ(r.excluded[i], 0) << i;
+  }
+  EXPECT_EQ(r.mode, planning_mode::nominal);
+  EXPECT_EQ(r.time_to_collision, no_collision);
+}
+
+TEST(planner, without_obstacles_every_index_is_one_and_the_nominal_command_is_returned) {
+  plan_input in = ego_only(12.0);
+  in.nominal = {0.7, 0.01};
+  const plan_result r = plan(in);
+  expect_all_room(r);
+  EXPECT_EQ(r.command, in.nominal);
+  EXPECT_EQ(r.forecast_time, 0.0);
+  ASSERT_EQ(r.forecast_times.size(), 17u);
+  EXPECT_DOUBLE_EQ(r.forecast_times.back(), 2.0);
+}
+
+TEST(planner, a_far_obstacle_is_ignored_at_no_cost) {
+  plan_input in = ego_only(12.0);
+  in.obstacles.push_back(vehicle(7, {{300.0, 0.0}, pi}, 15.0, 0.0, in.time));
+  const plan_result r = plan(in);
+  expect_all_room(r);
+  ASSERT_EQ(r.obstacles.size(), 1u);
+  EXPECT_FALSE(r.obstacles[0].relevant);
+  EXPECT_EQ(r.command, in.nominal);
+}
+
+TEST(planner, an_obstacle_driving_away_leaves_all_the_room) {
+  plan_input in = ego_only(10.0);
+  in.obstacles.push_back(vehicle(2, {{12.0, 0.0}, 0.0}, 20.0, 0.0, in.time));  // ahead, faster
+  in.obstacles.push_back(vehicle(3, {{-5.0, 8.0}, 2.5}, 10.0, 0.0, in.time));  // behind-left, leaving
+  const plan_result r = plan(in);
+  EXPECT_TRUE(r.obstacles[0].relevant);
+  expect_all_room(r);
+  EXPECT_EQ(r.command, in.nominal);
+}
+
+TEST(planner, a_crossing_vehicle_forces_avoidance_with_a_safe_command) {
+  const plan_input in = crossing_scene();
+  const plan_result r = plan(in);
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_NE(r.mode, planning_mode::nominal);
+  EXPECT_LT(r.time_to_collision, 3.0);
+  EXPECT_GT(r.mi_brake[0], 0.0);
+  EXPECT_LT(std::max(r.mi_brake[0], r.mi_accelerate[0]), 1.0);
+  // The command is safe under the selected forecast.
+  const forecast_obstacle b{r.obstacles[0].motion, rectangle{}};
+  EXPECT_FALSE(maneuver_collides(in.ego, r.command, std::span(&b, 1), std::vector<double>{r.forecast_time},
+                                 {1.0, 3.0, 0.01, 0.0}));
+}
+
+/// `in` mirrored about the x-axis: y ↦ −y, headings and curvatures change sign.
+plan_input mirrored(plan_input in) {
+  const auto flip = [](pose& p) {
+    p.position.y = -p.position.y;
+    p.heading = -p.heading;
+  };
+  flip(in.ego.pose);
+  in.nominal.curvature = -in.nominal.curvature;
+  for (obstacle_track& o : in.obstacles) {
+    for (observation& h : o.history) flip(h.pose);
+    if (auto* polygon = std::get_if<convex_polygon>(&o.shape)) {
+      for (vec2& v : polygon->vertices) v.y = -v.y;
+    }
+  }
+  return in;
+}
+
+/// `in` rotated by `angle` about the origin, then moved by `shift`.
+plan_input moved(plan_input in, double angle, vec2 shift) {
+  const auto move = [&](pose& p) {
+    p.position = rotated(p.position, std::cos(angle), std::sin(angle)) + shift;
+    p.heading += angle;
+  };
+  move(in.ego.pose);
+  for (obstacle_track& o : in.obstacles) {
+    for (observation& h : o.history) move(h.pose);
+  }
+  return in;
+}
+
+void expect_same_indices(const plan_result& a, const plan_result& b, const std::string& context) {
+  ASSERT_TRUE(a.ok() && b.ok()) << a.error << b.error;
+  for (std::size_t i = 0; i < a.forecast_times.size(); ++i) {
+    EXPECT_NEAR(a.mi_brake[i], b.mi_brake[i], 1e-9) << context << " tau index " << i;
+    EXPECT_NEAR(a.mi_accelerate[i], b.mi_accelerate[i], 1e-9) << context << " tau index " << i;
+    EXPECT_EQ(a.excluded[i], b.excluded[i]) << context;
+  }
+  EXPECT_EQ(a.forecast_index, b.forecast_index) << context;
+  EXPECT_EQ(a.selected_family, b.selected_family) << context;
+  EXPECT_EQ(a.mode, b.mode) << context;
+}
+
+TEST(planner, mirroring_the_scene_mirrors_the_curvature_and_keeps_the_indices) {
+  std::mt19937_64 rng(101);
+  for (int trial = 0; trial < 20; ++trial) {
+    const plan_input in = trial == 0 ? crossing_scene() : testing::random_scene(rng);
+    const plan_result a = plan(in);
+    const plan_result b = plan(mirrored(in));
+    expect_same_indices(a, b, testing::describe(in));
+    EXPECT_NEAR(a.command.acceleration, b.command.acceleration, 1e-9) << testing::describe(in);
+    EXPECT_NEAR(a.command.curvature, -b.command.curvature, 1e-9) << testing::describe(in);
+  }
+}
+
+TEST(planner, moving_the_whole_scene_changes_nothing) {
+  std::mt19937_64 rng(202);
+  for (int trial = 0; trial < 20; ++trial) {
+    const plan_input in = trial == 0 ? crossing_scene() : testing::random_scene(rng);
+    const plan_result a = plan(in);
+    const plan_result b = plan(moved(in, 2.1, {-130.0, 47.5}));
+    expect_same_indices(a, b, testing::describe(in));
+    EXPECT_NEAR(a.command.acceleration, b.command.acceleration, 1e-9);
+    EXPECT_NEAR(a.command.curvature, b.command.curvature, 1e-9);
+  }
+}
+
+TEST(planner, a_larger_safety_margin_never_increases_an_index) {
+  std::mt19937_64 rng(303);
+  for (int trial = 0; trial < 20; ++trial) {
+    plan_input in = trial == 0 ? crossing_scene() : testing::random_scene(rng);
+    std::vector<plan_result> results;
+    for (const double margin : {0.0, 0.3, 1.0}) {
+      in.config.safety_margin = margin;
+      results.push_back(plan(in));
+      ASSERT_TRUE(results.back().ok());
+    }
+    for (std::size_t k = 1; k < results.size(); ++k) {
+      for (std::size_t i = 0; i < results[k].forecast_times.size(); ++i) {
+        EXPECT_LE(results[k].mi_brake[i], results[k - 1].mi_brake[i]) << testing::describe(in);
+        EXPECT_LE(results[k].mi_accelerate[i], results[k - 1].mi_accelerate[i]) << testing::describe(in);
+      }
+      EXPECT_LE(results[k].time_to_collision, results[k - 1].time_to_collision);
+    }
+  }
+}
+
+TEST(planner, a_stopped_ego_beside_crossing_traffic_stays_put) {
+  plan_input in = ego_only(0.0);
+  in.nominal = {3.0, 0.0};  // it would like to pull out at full throttle
+  // A car crossing 4.9 m ahead, from the right, at 12 m/s: in the ego's way from 0.74 s to 1.26 s.
+  in.obstacles.push_back(vehicle(1, {{4.9, -12.0}, pi / 2.0}, 12.0, 0.0, in.time));
+  const plan_result r = plan(in);
+  ASSERT_TRUE(r.ok()) << r.error;
+  // AS− of a stopped ego is the single displacement "stay": safe, so MI− = 1.
+  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) EXPECT_EQ(r.mi_brake[i], 1.0);
+  EXPECT_LT(r.mi_accelerate[0], 1.0);
+  EXPECT_EQ(r.selected_family, family::brake);
+  EXPECT_EQ(r.mode, planning_mode::avoid);
+  EXPECT_LE(r.command.acceleration, 0.0);
+}
+
+TEST(planner, a_vehicle_standing_in_the_lane_is_avoided_and_late_forecasts_are_excluded) {
+  plan_input in = ego_only(10.0);
+  obstacle_track parked;
+  parked.id = 4;
+  parked.kind = obstacle_kind::static_obstacle;
+  parked.history = {{in.time, {{20.0, 0.0}, 0.0}, 0.0}};
+  in.obstacles.push_back(parked);
+  const plan_result r = plan(in);
+  ASSERT_TRUE(r.ok()) << r.error;
+  // Rear of the parked car at 17.75 m, ego front at 2.25 m: TTC = 15.5 m / 10 m/s.
+  EXPECT_NEAR(r.time_to_collision, 1.55, 1e-3);
+  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+    EXPECT_EQ(r.excluded[i], r.forecast_times[i] > 1.55 ? 1 : 0) << i;
+    // A standing obstacle is forecast the same whatever τ.
+    EXPECT_EQ(r.mi_brake[i], r.mi_brake[0]);
+    EXPECT_EQ(r.mi_accelerate[i], r.mi_accelerate[0]);
+  }
+  EXPECT_EQ(r.forecast_time, 0.0) << "ties go to the smallest forecast time";
+  // Braking to a stop short of it (from 10 m/s at up to 7 m/s²) and steering around it both work:
+  // both families keep most of their room, and nearly as much as each other.
+  EXPECT_GT(r.mi_brake[0], 0.6);
+  EXPECT_GT(r.mi_accelerate[0], 0.6);
+  EXPECT_LT(std::max(r.mi_brake[0], r.mi_accelerate[0]), 0.9);
+  EXPECT_EQ(r.mode, planning_mode::avoid);
+  const forecast_obstacle car{r.obstacles[0].motion, rectangle{}};
+  EXPECT_FALSE(maneuver_collides(in.ego, r.command, std::span(&car, 1), std::vector<double>{0.0}, {1.0, 3.0, 0.001, 0.0}));
+}
+
+TEST(planner, a_pedestrian_crossing_ahead_makes_the_ego_yield) {
+  plan_input in = ego_only(40.0 / 3.6);
+  obstacle_track walker;
+  walker.id = 9;
+  walker.kind = obstacle_kind::pedestrian;
+  walker.shape = disc{0.35};
+  // Crossing from the right at 1.4 m/s, reaching the ego's lane centre when the ego's front does.
+  const double meet = 1.6;
+  const double x = 40.0 / 3.6 * meet + 2.25;
+  walker.history = testing::ctrv_history({{x, -1.4 * meet}, pi / 2.0}, 1.4, 0.0, in.time);
+  in.obstacles.push_back(walker);
+  const plan_result r = plan(in);
+  ASSERT_TRUE(r.ok()) << r.error;
+  EXPECT_NEAR(r.time_to_collision, meet, 0.35);
+  EXPECT_NE(r.mode, planning_mode::nominal);
+  EXPECT_GT(r.mi_brake_selected, 0.5) << "braking before the walker's path is easy from 40 km/h";
+  const forecast_obstacle w{r.obstacles[0].motion, disc{0.35}};
+  EXPECT_FALSE(maneuver_collides(in.ego, r.command, std::span(&w, 1), std::vector<double>{r.forecast_time},
+                                 {1.0, 3.0, 0.001, 0.0}));
+}
+
+TEST(planner, a_command_outside_the_limits_is_clamped) {
+  plan_input in = ego_only(10.0);
+  in.nominal = {12.0, 0.5};
+  const plan_result r = plan(in);
+  ASSERT_TRUE(r.ok());
+  EXPECT_EQ(r.command, (maneuver{3.0, 0.05}));
+}
+
+TEST(planner, constant_policy_uses_its_forecast_time_unless_it_exceeds_the_time_to_collision) {
+  plan_input in = crossing_scene();
+  in.config.policy = {forecast_policy_kind::constant, 1.0};
+  plan_result r = plan(in);
+  ASSERT_TRUE(r.ok());
+  ASSERT_GT(r.time_to_collision, 1.0);
+  EXPECT_EQ(r.forecast_time, 1.0);
+  in.config.policy = {forecast_policy_kind::constant, 2.0};
+  r = plan(in);
+  ASSERT_LT(r.time_to_collision, 2.0);
+  EXPECT_LE(r.forecast_time, r.time_to_collision);
+  EXPECT_GT(r.forecast_time, r.time_to_collision - 0.125);
+}
+
+TEST(planner, recorded_samples_describe_the_sets_the_reference_indices_were_computed_from) {
+  plan_input in = crossing_scene();
+  in.config.record_samples = true;
+  const plan_result r = plan_reference(in, {{11, 15}, 0.02});
+  ASSERT_TRUE(r.ok());
+  ASSERT_TRUE(r.samples);
+  const sample_snapshot& s = *r.samples;
+  ASSERT_EQ(s.safe_by_forecast.size(), r.forecast_times.size());
+  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+    double total[2] = {0.0, 0.0};
+    double safe[2] = {0.0, 0.0};
+    for (std::size_t m = 0; m < s.maneuvers.size(); ++m) {
+      const int f = s.families[m] == family::brake ? 0 : 1;
+      total[f] += s.area_weights[m];
+      if (s.safe_by_forecast[i][m]) safe[f] += s.area_weights[m];
+    }
+    EXPECT_NEAR(safe[0] / total[0], r.mi_brake[i], 1e-12);
+    EXPECT_NEAR(safe[1] / total[1], r.mi_accelerate[i], 1e-12);
+  }
+  // End points are the displacements in the world frame: the straight full-throttle one.
+  bool found = false;
+  for (std::size_t m = 0; m < s.maneuvers.size(); ++m) {
+    if (s.maneuvers[m] == maneuver{3.0, 0.0} && !s.on_nominal_curvature[m]) {
+      EXPECT_NEAR(s.end_points[m].x, 40.0 / 3.6 + 1.5, 1e-9);
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+}
+
+TEST(planner, recorded_samples_of_the_fast_planner_are_those_of_the_reference_at_the_same_resolution) {
+  plan_input in = crossing_scene();
+  in.config.record_samples = true;
+  in.config.resolution = {11, 15};
+  in.config.max_time_step = 0.02;
+  const plan_result fast = plan(in);
+  const plan_result reference = plan_reference(in, {{11, 15}, 0.02});
+  ASSERT_TRUE(fast.samples && reference.samples);
+  EXPECT_EQ(fast.samples->safe_by_forecast, reference.samples->safe_by_forecast);
+  EXPECT_EQ(fast.samples->maneuvers, reference.samples->maneuvers);
+  EXPECT_EQ(fast.samples->area_weights, reference.samples->area_weights);
+  // The fast indices interpolate between the samples; the reference counts them.
+  for (std::size_t i = 0; i < fast.forecast_times.size(); ++i) {
+    EXPECT_NEAR(fast.mi_brake[i], reference.mi_brake[i], 0.06);
+    EXPECT_NEAR(fast.mi_accelerate[i], reference.mi_accelerate[i], 0.06);
+  }
+}
+
+}  // namespace
+}  // namespace mm

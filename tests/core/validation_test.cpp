@@ -1,0 +1,112 @@
+#include <gtest/gtest.h>
+
+#include <limits>
+#include <string>
+
+#include "mm/planner.hpp"
+#include "random_scenes.hpp"
+
+namespace mm {
+namespace {
+
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
+constexpr double inf = std::numeric_limits<double>::infinity();
+
+plan_input valid_input() {
+  plan_input in;
+  in.time = 2.0;
+  in.ego.speed = 10.0;
+  obstacle_track b;
+  b.id = 5;
+  b.history = testing::ctrv_history({{20.0, 10.0}, -1.5}, 8.0, 0.1, in.time);
+  in.obstacles.push_back(b);
+  return in;
+}
+
+/// `mutate` makes the input invalid; the error must name `field` and say `what`.
+template <class Mutate>
+void expect_rejected(Mutate mutate, const std::string& field, const std::string& what) {
+  plan_input in = valid_input();
+  mutate(in);
+  const plan_result r = plan(in);
+  EXPECT_EQ(r.status, plan_status::invalid_input) << field;
+  EXPECT_NE(r.error.find(field), std::string::npos) << "error: " << r.error << "\nexpected field: " << field;
+  EXPECT_NE(r.error.find(what), std::string::npos) << "error: " << r.error << "\nexpected: " << what;
+  EXPECT_EQ(validation_error(in).value_or(""), r.error);
+}
+
+TEST(validation, the_valid_input_is_accepted) {
+  EXPECT_FALSE(validation_error(valid_input()));
+  EXPECT_TRUE(plan(valid_input()).ok());
+}
+
+TEST(validation, non_finite_ego_state_is_rejected_by_field) {
+  expect_rejected([](plan_input& in) { in.ego.pose.position.x = nan; }, "ego.pose.position.x", "finite");
+  expect_rejected([](plan_input& in) { in.ego.pose.heading = inf; }, "ego.pose.heading", "finite");
+  expect_rejected([](plan_input& in) { in.ego.speed = nan; }, "ego.speed", "NaN");
+  expect_rejected([](plan_input& in) { in.ego.speed = -1.0; }, "ego.speed", "≥ 0");
+  expect_rejected([](plan_input& in) { in.ego.speed = 31.0; }, "ego.speed", "speed_cap");
+  expect_rejected([](plan_input& in) { in.nominal.curvature = nan; }, "nominal.curvature", "finite");
+  expect_rejected([](plan_input& in) { in.time = inf; }, "time", "finite");
+}
+
+TEST(validation, non_positive_dimensions_and_limits_are_rejected) {
+  expect_rejected([](plan_input& in) { in.ego.shape = rectangle{0.0, 1.8}; }, "ego.shape", "length");
+  expect_rejected([](plan_input& in) { in.obstacles[0].shape = disc{-0.3}; }, "obstacles[0] (id 5).shape", "radius");
+  expect_rejected([](plan_input& in) { in.ego.limits.max_deceleration = -7.0; }, "ego.limits.max_deceleration",
+                  "positive");
+  expect_rejected([](plan_input& in) { in.ego.limits.max_acceleration = 0.0; }, "ego.limits.max_acceleration",
+                  "positive");
+  expect_rejected([](plan_input& in) { in.ego.limits.min_turning_radius = nan; }, "ego.limits.min_turning_radius",
+                  "positive");
+  expect_rejected([](plan_input& in) { in.ego.limits.speed_cap = 0.0; }, "ego.limits.speed_cap", "positive");
+  expect_rejected([](plan_input& in) { in.config.safety_margin = -0.1; }, "config.safety_margin", "≥ 0");
+  expect_rejected([](plan_input& in) { in.config.resolution.accelerations = 1; }, "config.resolution.accelerations",
+                  "from 2");
+}
+
+TEST(validation, an_empty_forecast_grid_or_one_beyond_the_collision_window_is_rejected) {
+  expect_rejected([](plan_input& in) { in.config.forecast_count = 0; }, "config.forecast_count", "empty");
+  expect_rejected([](plan_input& in) { in.config.collision_window = 1.5; }, "config.forecast_count",
+                  "exceeds config.collision_window");
+  expect_rejected([](plan_input& in) { in.config.forecast_step = 0.0; }, "config.forecast_step", "positive");
+  expect_rejected([](plan_input& in) { in.config.collision_window = 0.5; }, "config.collision_window",
+                  "at least config.displacement_horizon");
+  expect_rejected(
+      [](plan_input& in) { in.config.policy = {forecast_policy_kind::constant, 0.3}; },
+      "config.policy.constant_forecast_time", "on the grid");
+  expect_rejected(
+      [](plan_input& in) { in.config.policy = {forecast_policy_kind::constant, 2.5}; },
+      "config.policy.constant_forecast_time", "on the grid");
+}
+
+TEST(validation, a_history_too_short_or_out_of_order_is_rejected) {
+  expect_rejected([](plan_input& in) { in.obstacles[0].history.resize(1); }, "obstacles[0] (id 5).history size",
+                  "at least 2 observations");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history.clear(); }, "obstacles[0] (id 5).history size",
+                  "at least 2");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[10].time = in.obstacles[0].history[9].time; },
+                  "obstacles[0] (id 5).history[10].time", "after the previous observation");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[3].speed = nan; }, "obstacles[0] (id 5).history[3].speed",
+                  "finite");
+  expect_rejected([](plan_input& in) { in.time = 1.0; }, "obstacles[0] (id 5).history.back().time",
+                  "no later than the planning time");
+  // A static obstacle needs one observation only.
+  plan_input in = valid_input();
+  in.obstacles[0].kind = obstacle_kind::static_obstacle;
+  in.obstacles[0].history.resize(1);
+  in.obstacles[0].history[0].time = in.time;
+  EXPECT_TRUE(plan(in).ok());
+}
+
+TEST(validation, an_invalid_result_carries_no_command_to_act_on) {
+  plan_input in = valid_input();
+  in.ego.speed = nan;
+  const plan_result r = plan(in);
+  EXPECT_FALSE(r.ok());
+  EXPECT_TRUE(r.mi_brake.empty());
+  EXPECT_EQ(r.command, (maneuver{0.0, 0.0}));
+}
+
+}  // namespace
+}  // namespace mm
