@@ -52,6 +52,32 @@ bool maneuver_collides(const ego_state& ego, const maneuver& u,
   return first_collision_time(ego, u, obstacles, forecast_times, window) != no_collision;
 }
 
+bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
+                             std::span<const double> forecast_times, const collision_window& window,
+                             double resolution) {
+  // Largest speed of the ego's reference point along u, and of any of its footprint points.
+  const double top_speed = std::max(std::min(ego.speed, ego.limits.speed_cap),
+                                    speed_after(ego.speed, u.acceleration, window.horizon, ego.limits.speed_cap));
+  const double ego_rate = top_speed * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
+  double t = 0.0;
+  while (true) {
+    const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
+    const placed_footprint e = place(ego.shape, ego_pose);
+    double step = window.duration - t;
+    for (std::size_t j = 0; j < obstacles.size(); ++j) {
+      const forecast_obstacle& o = obstacles[j];
+      const double rate = ego_rate + o.motion.speed + std::abs(o.motion.yaw_rate) * bounding_radius(o.shape);
+      const double clearance =
+          signed_distance(e, place(o.shape, forecast_pose(o.motion, forecast_times[j], t))) - window.margin;
+      if (clearance <= 0.0) return false;
+      if (rate > 0.0) step = std::min(step, clearance / rate);
+    }
+    if (t >= window.duration) return true;
+    if (step < resolution) return false;
+    t = std::min(window.duration, t + step);
+  }
+}
+
 double time_to_collision(const ego_state& ego, const maneuver& nominal,
                          const forecast_obstacle& obstacle, const collision_window& window) {
   const double whole_window = window.duration;

@@ -43,7 +43,7 @@ namespace {
 /// Running minimum of every sample's clearance, and the first time index at which each sample
 /// could lower it.
 struct clearance_walk {
-  clearance_set clearance;
+  std::vector<running_minimum> minimum;
   std::vector<std::size_t> next;
 };
 
@@ -74,7 +74,8 @@ void advance(const ego_sweep& sweep, const forecast_obstacle& obstacle, const po
   const placed_footprint obstacle_footprint = place(obstacle.shape, where);
   for (std::size_t m = 0; m < sweep.sample_count(); ++m) {
     if (walk.next[m] > k) continue;
-    const double known = std::min(walk.clearance[m], w.cap);
+    running_minimum& r = walk.minimum[m];
+    const double known = std::min(r.value, w.cap);
     if (known <= -w.cap) {
       walk.next[m] = std::numeric_limits<std::size_t>::max();
       continue;
@@ -86,8 +87,8 @@ void advance(const ego_sweep& sweep, const forecast_obstacle& obstacle, const po
       continue;
     }
     const double d = signed_distance(place(sweep.ego().shape, p.position, sweep.direction(k, m)), obstacle_footprint) - w.margin;
-    walk.clearance[m] = std::min(walk.clearance[m], d);
-    walk.next[m] = first_possible(k, d - std::min(walk.clearance[m], w.cap), w.distance_rate, w.time_step);
+    r.update(d, k);
+    walk.next[m] = first_possible(k, d - std::min(r.value, w.cap), w.distance_rate, w.time_step);
   }
 }
 
@@ -98,16 +99,24 @@ std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obs
   const std::vector<double>& times = sweep.times();
   const motion_estimate& motion = obstacle.motion;
   const double obstacle_radius = bounding_radius(obstacle.shape);
+  const double distance_rate = sweep.largest_point_speed() + motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
+  // Minima up to half a step's change above the cap can still refine to below it: walk exactly to there.
+  const double walk_cap = cap + distance_rate * sweep.window().time_step / 2.0;
   const walk_constants w{bounding_radius(sweep.ego().shape) + obstacle_radius,
                          sweep.window().margin,
-                         cap,
+                         walk_cap,
                          sweep.largest_speed() + motion.speed,
-                         sweep.largest_point_speed() + motion.speed + std::abs(motion.yaw_rate) * obstacle_radius,
+                         distance_rate,
                          sweep.window().time_step};
+  const auto clearance_at = [&](double tau, std::size_t k, std::size_t m) {
+    return signed_distance(place(sweep.ego().shape, sweep.at(k, m).position, sweep.direction(k, m)),
+                           place(obstacle.shape, forecast_pose(motion, tau, times[k]))) -
+           w.margin;
+  };
   std::vector<clearance_set> result;
   result.reserve(forecast_times.size());
   // The walk over the times t ≤ τ, where every forecast agrees; [0, shared_until) is done.
-  clearance_walk shared{clearance_set(sweep.sample_count(), std::numeric_limits<double>::infinity()),
+  clearance_walk shared{std::vector<running_minimum>(sweep.sample_count()),
                         std::vector<std::size_t>(sweep.sample_count(), 0)};
   std::size_t shared_until = 0;
   for (const double tau : forecast_times) {
@@ -118,8 +127,17 @@ std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obs
     for (std::size_t k = shared_until; k < times.size(); ++k) {
       advance(sweep, obstacle, forecast_pose(motion, tau, times[k]), w, k, walk);
     }
-    for (double& c : walk.clearance) c = std::clamp(c, -cap, cap);
-    result.push_back(std::move(walk.clearance));
+    clearance_set clearance(sweep.sample_count());
+    for (std::size_t m = 0; m < sweep.sample_count(); ++m) {
+      const running_minimum& r = walk.minimum[m];
+      double c = r.value;
+      if (c > -walk_cap && c < walk_cap) {
+        c = refined_minimum(times, r.argmin, [&](std::size_t j) { return clearance_at(tau, j, m); }, distance_rate,
+                            r.value);
+      }
+      clearance[m] = std::clamp(c, -cap, cap);
+    }
+    result.push_back(std::move(clearance));
   }
   return result;
 }
@@ -129,16 +147,24 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
                                                 std::span<const double> forecast_times,
                                                 const collision_window& window) {
   const std::vector<double> times = sample_times(window.duration, window.time_step);
+  const double rate = speed_after(ego.speed, ego.limits.max_acceleration, window.horizon, ego.limits.speed_cap) *
+                          (1.0 + max_curvature(ego.speed, ego.limits) * bounding_radius(ego.shape)) +
+                      obstacle.motion.speed + std::abs(obstacle.motion.yaw_rate) * bounding_radius(obstacle.shape);
   std::vector<clearance_set> result;
   for (const double tau : forecast_times) {
-    clearance_set clearance(samples.size(), std::numeric_limits<double>::infinity());
+    clearance_set clearance(samples.size());
     for (std::size_t m = 0; m < samples.size(); ++m) {
-      for (const double t : times) {
-        const pose ego_pose = maneuver_pose(ego.pose, ego.speed, samples.maneuvers[m], t, window.horizon, ego.limits.speed_cap);
+      std::vector<double> d(times.size());
+      running_minimum r;
+      for (std::size_t k = 0; k < times.size(); ++k) {
+        const pose ego_pose = maneuver_pose(ego.pose, ego.speed, samples.maneuvers[m], times[k], window.horizon, ego.limits.speed_cap);
         const placed_footprint e = place(ego.shape, ego_pose);
-        const placed_footprint o = place(obstacle.shape, forecast_pose(obstacle.motion, tau, t));
-        clearance[m] = std::min(clearance[m], signed_distance(e, o) - window.margin);
+        const placed_footprint o = place(obstacle.shape, forecast_pose(obstacle.motion, tau, times[k]));
+        d[k] = signed_distance(e, o) - window.margin;
+        r.update(d[k], k);
       }
+      const double* values = d.data();
+      clearance[m] = refined_minimum(times, r.argmin, [values](std::size_t j) { return values[j]; }, rate, r.value);
     }
     result.push_back(std::move(clearance));
   }

@@ -1,6 +1,9 @@
 #include "mm/maneuver_choice.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 #include "mm/forecast_policy.hpp"
 
@@ -41,24 +44,25 @@ struct candidate_rank {
   }
 };
 
-/// The safe candidate of `f` with the least (or, `maximal`, the largest) effort.
+/// The verified safe candidate of `f` with the least (or, `maximal`, the largest) effort.
 std::optional<std::size_t> extreme_effort_candidate(const choice_input& in, family f, bool maximal) {
-  std::optional<std::size_t> best;
-  candidate_rank best_rank{};
+  std::vector<std::pair<candidate_rank, std::size_t>> ranked;
   for (const index_range r : {in.samples->grid(f), in.samples->nominal_column(f)}) {
     for (std::size_t m = r.begin; m < r.end; ++m) {
       if (in.colliding->test(m)) continue;
       const maneuver& u = in.samples->maneuvers[m];
-      const candidate_rank rank{maneuver_effort(u, in.nominal, in.initial_speed, in.weights),
-                                std::abs(u.curvature - in.nominal.curvature),
-                                std::abs(u.acceleration - in.nominal.acceleration)};
-      if (!best || rank.better_than(best_rank, maximal)) {
-        best = m;
-        best_rank = rank;
-      }
+      ranked.push_back({{maneuver_effort(u, in.nominal, in.initial_speed, in.weights),
+                         std::abs(u.curvature - in.nominal.curvature),
+                         std::abs(u.acceleration - in.nominal.acceleration)},
+                        m});
     }
   }
-  return best;
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [&](const auto& x, const auto& y) { return x.first.better_than(y.first, maximal); });
+  for (const auto& [rank, m] : ranked) {
+    if (!in.verify || in.verify(in.samples->maneuvers[m])) return m;
+  }
+  return std::nullopt;
 }
 
 family other(family f) { return f == family::brake ? family::accelerate : family::brake; }

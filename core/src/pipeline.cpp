@@ -213,7 +213,12 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
   choice.colliding = &colliding;
   choice.selected_family = result.selected_family;
   choice.nominal = nominal;
-  choice.nominal_safe = !maneuver_collides(ego, nominal, relevant, assigned_tau, window);
+  // Safe means collision-free in continuous time, not only at the sample times: a minimal-effort
+  // choice lies at the edge of the safe set, where a corner can clip between samples.
+  choice.verify = [&](const maneuver& u) {
+    return verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
+  };
+  choice.nominal_safe = choice.verify(nominal);
   choice.initial_speed = ego.speed;
   choice.weights = config.effort;
   choice.urgent_steering = config.urgent_steering;

@@ -19,6 +19,10 @@ struct pipeline_options {
 /// boundary is unaffected in practice.
 inline constexpr double clearance_cap = 2.0;
 
+/// Smallest step of the continuous-time proof that a command is collision-free [s]: a command
+/// passing closer than the largest relative point speed times this is not proven safe (≈ 2–3 cm).
+inline constexpr double verification_resolution = 1e-3;
+
 /// Spec §3–§9 for one planning step.
 plan_result run_pipeline(const plan_input& input, const pipeline_options& options);
 

@@ -54,6 +54,27 @@ TEST(collision, crossing_vehicle_collides_under_straight_forecast_but_not_after_
   EXPECT_LT(t, 2.0);
 }
 
+TEST(collision, verification_catches_a_contact_between_sample_times) {
+  const ego_state stopped = ego_east(0.0);
+  // A walker crossing 0.3 m in front of the car at 20 m/s: in contact from t ≈ 0.043 s to 0.157 s,
+  // between the samples 0 and 0.2 s of a coarse window.
+  const forecast_obstacle fast_walker{{{{2.55, 2.0}, -pi / 2.0}, 20.0, 0.0}, disc{0.35}};
+  const collision_window coarse{1.0, 3.0, 0.2, 0.0};
+  const std::array<forecast_obstacle, 1> obstacles{fast_walker};
+  const std::array<double, 1> taus{0.0};
+  EXPECT_FALSE(maneuver_collides(stopped, {0.0, 0.0}, obstacles, taus, coarse)) << "the samples miss it";
+  EXPECT_FALSE(verified_collision_free(stopped, {0.0, 0.0}, obstacles, taus, coarse));
+  const collision_window fine{1.0, 3.0, 0.01, 0.0};
+  EXPECT_TRUE(maneuver_collides(stopped, {0.0, 0.0}, obstacles, taus, fine));
+  // Passing 1.25 m in front instead: proven free.
+  const std::array<forecast_obstacle, 1> clear{forecast_obstacle{{{{3.5, 2.0}, -pi / 2.0}, 20.0, 0.0}, disc{0.35}}};
+  EXPECT_TRUE(verified_collision_free(stopped, {0.0, 0.0}, clear, taus, coarse));
+  // Braking hard in front of a crossing car is proven free; driving on is not.
+  const std::array<forecast_obstacle, 1> car{forecast_obstacle{{{{20.0, 12.0}, -pi / 2.0}, 8.0, 0.0}, rectangle{}}};
+  EXPECT_TRUE(verified_collision_free(ego_east(10.0), {-7.0, 0.0}, car, taus, coarse));
+  EXPECT_FALSE(verified_collision_free(ego_east(10.0), {0.0, 0.0}, car, taus, coarse));
+}
+
 TEST(collision, tunneling_step_is_the_smallest_dimension_over_the_largest_relative_speed) {
   const ego_state ego = ego_east(10.0);
   const forecast_obstacle walker{{{{0.0, 0.0}, 0.0}, 1.5, 0.0}, disc{0.35}};

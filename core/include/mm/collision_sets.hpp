@@ -51,8 +51,9 @@ class ego_sweep {
 };
 
 /// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed
-/// clearance of sample m with the obstacle forecast with `forecast_times[i]` (ascending), over
-/// the sample times of the sweep, clamped to [−cap, cap].
+/// clearance of sample m with the obstacle forecast with `forecast_times[i]` (ascending): the
+/// `refined_minimum` of the signed distance − margin over the sample times of the sweep, clamped
+/// to [−cap, cap].
 ///
 /// Fast path, each step exact for the sampled times:
 /// - forecasts agree up to τ, so the minimum over t ≤ τ_i is accumulated once and shared by all
@@ -67,7 +68,8 @@ class ego_sweep {
 std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                       std::span<const double> forecast_times, double cap);
 
-/// The reference for `clearances`: every sample, forecast time and sample time, no pruning, no cap.
+/// The reference for `clearances`: every sample, forecast time and sample time, no pruning, no cap;
+/// the same `refined_minimum`.
 std::vector<clearance_set> clearances_reference(const ego_state& ego, const maneuver_samples& samples,
                                                 const forecast_obstacle& obstacle,
                                                 std::span<const double> forecast_times,

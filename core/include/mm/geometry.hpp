@@ -23,7 +23,7 @@ constexpr double dot(vec2 a, vec2 b) { return a.x * b.x + a.y * b.y; }
 /// z-component of the 3-D cross product: positive when b is counter-clockwise of a.
 constexpr double cross(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 constexpr double squared_norm(vec2 a) { return dot(a, a); }
-inline double norm(vec2 a) { return std::hypot(a.x, a.y); }
+inline double norm(vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
 
 /// Unit vector of direction `angle` [rad], counter-clockwise from +x.
 inline vec2 unit_vector(double angle) { return {std::cos(angle), std::sin(angle)}; }

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string_view>
@@ -41,6 +42,9 @@ struct choice_input {
   double initial_speed = 0.0;              ///< v0 [m/s]
   effort_weights weights;
   bool urgent_steering = false;            ///< the scenario option of §8.3
+  /// Proves a candidate collision-free in continuous time; candidates that fail are passed over.
+  /// Empty: every candidate outside `colliding` is taken as safe.
+  std::function<bool(const maneuver&)> verify;
 };
 
 struct maneuver_decision {
@@ -53,7 +57,8 @@ struct maneuver_decision {
 /// 1. u_nom if safe; 2. the safe candidate of minimal J in the selected family, else in the
 /// other; 3. with urgent steering, when no nominal-curvature candidate of either family is safe,
 /// maximal J instead. Ties in J go to the smaller steering change |κ − κ_nom|, then to the
-/// smaller acceleration change, then to the first sample. Nothing when no candidate is safe (rule 4).
+/// smaller acceleration change, then to the first sample. Candidates are taken in that order
+/// until one passes `verify`. Nothing when no candidate is safe and verified (rule 4).
 std::optional<maneuver_decision> choose_maneuver(const choice_input& input);
 
 /// Rule 4 of spec §8 (near-crash): the sample of latest first collision time
