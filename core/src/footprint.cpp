@@ -107,6 +107,51 @@ double core_penetration(const placed_footprint& a, const placed_footprint& b) {
   return depth;
 }
 
+/// `p` in the frame of rectangle `r` (x along its heading).
+vec2 in_frame(const placed_footprint& r, vec2 p) {
+  const vec2 d = p - r.centre;
+  return {dot(d, r.axis), cross(r.axis, d)};
+}
+
+/// Squared distance from a point given in a rectangle's frame to the rectangle (0 inside).
+double squared_distance_to_box(vec2 local, const placed_footprint& r) {
+  const double dx = std::max(std::abs(local.x) - r.half_length, 0.0);
+  const double dy = std::max(std::abs(local.y) - r.half_width, 0.0);
+  return dx * dx + dy * dy;
+}
+
+/// Signed distance of two rectangles: the separating-axis maximum when they overlap (minus the
+/// penetration depth), else the smallest corner-to-rectangle distance (exact for convex shapes).
+double rectangle_signed_distance(const placed_footprint& a, const placed_footprint& b) {
+  const vec2 d = b.centre - a.centre;
+  const vec2 a_side{-a.axis.y, a.axis.x};
+  const vec2 b_side{-b.axis.y, b.axis.x};
+  const double c = std::abs(dot(a.axis, b.axis));   // |cos| of the angle between them
+  const double s = std::abs(cross(a.axis, b.axis)); // |sin|
+  // Separation along each of the four face normals.
+  const double along_a = std::abs(dot(d, a.axis)) - a.half_length - (b.half_length * c + b.half_width * s);
+  const double side_a = std::abs(dot(d, a_side)) - a.half_width - (b.half_length * s + b.half_width * c);
+  const double along_b = std::abs(dot(d, b.axis)) - b.half_length - (a.half_length * c + a.half_width * s);
+  const double side_b = std::abs(dot(d, b_side)) - b.half_width - (a.half_length * s + a.half_width * c);
+  const double separation = std::max(std::max(along_a, side_a), std::max(along_b, side_b));
+  if (separation <= 0.0) return separation;
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < 4; ++i) {
+    best = std::min(best, squared_distance_to_box(in_frame(a, b.vertices[i]), a));
+    best = std::min(best, squared_distance_to_box(in_frame(b, a.vertices[i]), b));
+  }
+  return std::sqrt(best);
+}
+
+/// Signed distance of a point (the core of a disc) to a rectangle, before subtracting radii.
+double point_rectangle_signed_distance(vec2 p, const placed_footprint& r) {
+  const vec2 local = in_frame(r, p);
+  const double inside_x = r.half_length - std::abs(local.x);
+  const double inside_y = r.half_width - std::abs(local.y);
+  if (inside_x > 0.0 && inside_y > 0.0) return -std::min(inside_x, inside_y);
+  return std::sqrt(squared_distance_to_box(local, r));
+}
+
 double polygon_width(const std::vector<vec2>& v) {
   double width = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < v.size(); ++i) {
@@ -142,6 +187,11 @@ placed_footprint place(const footprint& shape, vec2 position, vec2 direction) {
     const vec2 along{c * hl, s * hl};
     const vec2 across{-s * hw, c * hw};
     placed.vertex_count = 4;
+    placed.is_rectangle = true;
+    placed.centre = position;
+    placed.axis = direction;
+    placed.half_length = hl;
+    placed.half_width = hw;
     placed.vertices[0] = position + along + across;
     placed.vertices[1] = position - along + across;
     placed.vertices[2] = position - along - across;
@@ -214,21 +264,19 @@ std::optional<std::string> footprint_error(const footprint& shape) {
 }
 
 bool overlaps(const placed_footprint& a, const placed_footprint& b, double margin) {
-  if (cores_intersect(a, b)) return true;
-  const double reach = a.radius + b.radius + margin;
-  if (reach <= 0.0) return false;
-  const double squared_reach = reach * reach;
-  return std::min(squared_vertex_to_boundary(a, b), squared_vertex_to_boundary(b, a)) < squared_reach;
+  return signed_distance(a, b) < margin;
 }
 
 double signed_distance(const placed_footprint& a, const placed_footprint& b) {
+  if (a.is_rectangle && b.is_rectangle) return rectangle_signed_distance(a, b);
+  if (a.is_rectangle && b.vertex_count == 1) return point_rectangle_signed_distance(b.vertices[0], a) - b.radius;
+  if (b.is_rectangle && a.vertex_count == 1) return point_rectangle_signed_distance(a.vertices[0], b) - a.radius;
   if (cores_intersect(a, b)) return -core_penetration(a, b) - a.radius - b.radius;
   return separated_core_distance(a, b) - a.radius - b.radius;
 }
 
 double gap_distance(const placed_footprint& a, const placed_footprint& b) {
-  if (cores_intersect(a, b)) return 0.0;
-  return std::max(0.0, separated_core_distance(a, b) - a.radius - b.radius);
+  return std::max(0.0, signed_distance(a, b));
 }
 
 }  // namespace mm

@@ -40,6 +40,13 @@ struct placed_footprint {
   std::array<vec2, max_polygon_vertices> vertices{};
   std::size_t vertex_count = 0;
   double radius = 0.0;
+  /// Set for rectangles, whose distances have closed forms: the centre, the unit heading, and the
+  /// half length and half width [m].
+  bool is_rectangle = false;
+  vec2 centre;
+  vec2 axis;
+  double half_length = 0.0;
+  double half_width = 0.0;
 };
 
 /// `shape` placed at `where`.
@@ -61,7 +68,8 @@ double smallest_dimension(const footprint& shape);
 std::optional<std::string> footprint_error(const footprint& shape);
 
 /// True when the footprints overlap after inflating `b` by `margin` ≥ 0 [m] (spec §2): the
-/// interiors intersect, or the gap between them is smaller than `margin`. Touching is not overlap.
+/// interiors intersect, or the gap between them is smaller than `margin`, i.e.
+/// `signed_distance(a, b) < margin`. Touching is not overlap.
 bool overlaps(const placed_footprint& a, const placed_footprint& b, double margin = 0.0);
 
 /// Euclidean distance between the footprints [m]; 0 when they overlap.
