@@ -1,0 +1,394 @@
+#include "mm/cli/commands.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <variant>
+
+#include "mm/sim/roundabout.hpp"
+#include "mm/sim/simulation.hpp"
+
+namespace mm::cli {
+namespace {
+
+using json = nlohmann::ordered_json;
+
+/// `value` rounded to `decimals` decimals, so that JSON shows e.g. 1.23 rather than 1.2300000000000002.
+double rounded(double value, int decimals = 6) {
+  const double scale = std::pow(10.0, decimals);
+  const double r = std::round(value * scale) / scale;
+  return r == 0.0 ? 0.0 : r;
+}
+
+json optional_number(const std::optional<double>& value, int decimals = 6) {
+  return value && std::isfinite(*value) ? json(rounded(*value, decimals)) : json(nullptr);
+}
+
+json point(vec2 p) { return json::array({rounded(p.x, 4), rounded(p.y, 4)}); }
+
+/// The path as a polyline: every segment's start, arcs every ≤ 0.5 m, and the end.
+json sampled(const mm::sim::path& p) {
+  json points = json::array();
+  if (p.empty()) return points;
+  constexpr double spacing = 0.5;       // [m]
+  constexpr std::size_t max_points = 20000;
+  const double length = p.length();
+  for (const mm::sim::path_segment& seg : p.segments()) {
+    const std::size_t pieces =
+        seg.curvature == 0.0 ? 1 : std::clamp<std::size_t>(static_cast<std::size_t>(std::ceil(seg.length / spacing)), 1, 2000);
+    for (std::size_t k = 0; k < pieces && points.size() < max_points; ++k) {
+      points.push_back(point(p.at(seg.start_arc_length + seg.length * static_cast<double>(k) / static_cast<double>(pieces)).position));
+    }
+  }
+  points.push_back(point(p.at(length).position));
+  return points;
+}
+
+json footprint_json(const mm::footprint& shape) {
+  if (const auto* r = std::get_if<mm::rectangle>(&shape)) {
+    return {{"shape", "rectangle"}, {"length_m", rounded(r->length, 4)}, {"width_m", rounded(r->width, 4)}};
+  }
+  if (const auto* d = std::get_if<mm::disc>(&shape)) return {{"shape", "disc"}, {"radius_m", rounded(d->radius, 4)}};
+  json vertices = json::array();
+  for (vec2 v : std::get<mm::convex_polygon>(shape).vertices) vertices.push_back(point(v));
+  return {{"shape", "polygon"}, {"vertices_m", vertices}};
+}
+
+json scene_json(const scenario_file::loaded_scenario& loaded) {
+  const mm::sim::scenario& s = loaded.scenario;
+  json agents = json::array();
+  for (const mm::sim::planning_vehicle& v : s.planning_vehicles) {
+    agents.push_back({{"name", v.name},
+                      {"kind", "planning_vehicle"},
+                      {"footprint", footprint_json(v.shape)},
+                      {"start_time_s", rounded(v.start_time)},
+                      {"start_arc_length_m", rounded(v.start_arc_length, 4)},
+                      {"path_m", sampled(v.path)}});
+  }
+  const auto motion = [&](const std::string& name, const char* kind, const mm::footprint& shape,
+                          const mm::sim::scripted_motion& m) {
+    json stop = nullptr;
+    if (m.stop) stop = point(m.path.at(m.stop->arc_length).position);
+    agents.push_back({{"name", name},
+                      {"kind", kind},
+                      {"footprint", footprint_json(shape)},
+                      {"start_time_s", rounded(m.start_time)},
+                      {"start_arc_length_m", rounded(m.start_arc_length, 4)},
+                      {"path_m", sampled(m.path)},
+                      {"stop_m", stop}});
+  };
+  for (const mm::sim::scripted_vehicle& v : s.scripted_vehicles) motion(v.name, "scripted_vehicle", v.shape, v.motion);
+  for (const mm::sim::pedestrian& p : s.pedestrians) motion(p.name, "pedestrian", mm::disc{p.radius}, p.motion);
+  for (const mm::sim::static_obstacle& o : s.static_obstacles) {
+    json vertices = json::array();
+    for (vec2 v : o.vertices) vertices.push_back(point(v));
+    agents.push_back({{"name", o.name}, {"kind", "static_obstacle"}, {"vertices_m", vertices}});
+  }
+
+  json ring = nullptr;
+  if (loaded.roundabout) {
+    const mm::sim::roundabout& r = loaded.roundabout->ring;
+    json arms = json::array();
+    for (const scenario_file::named_arm& arm : loaded.roundabout->arms) {
+      // The lanes of the arm: in (straight and connecting arc) and out, without the ring itself.
+      const mm::sim::path in = mm::sim::roundabout_entry_route(r, arm.arm, 1e-9);
+      const mm::sim::path out = mm::sim::roundabout_exit_route(r, mm::sim::diverge_angle(r, arm.arm) - 1e-9, arm.arm);
+      arms.push_back({{"name", arm.name},
+                      {"angle_deg", rounded(arm.arm.angle * 180.0 / std::numbers::pi)},
+                      {"lane_offset_m", rounded(arm.arm.lane_offset, 4)},
+                      {"straight_length_m", rounded(arm.arm.straight_length, 4)},
+                      {"entry_lane_m", sampled(in)},
+                      {"exit_lane_m", sampled(out)}});
+    }
+    ring = {{"center_m", point(r.center)},
+            {"radius_m", rounded(r.radius, 4)},
+            {"connection_radius_m", rounded(r.connection_radius, 4)},
+            {"arms", arms}};
+  }
+  json roads = json::array();
+  for (const scenario_file::road& road : loaded.roads) {
+    json line = json::array();
+    for (vec2 p : road.centre_line) line.push_back(point(p));
+    roads.push_back({{"name", road.name}, {"centre_line_m", line}, {"width_m", rounded(road.width, 4)}});
+  }
+  return {{"format", "maneuvermap-scene/1"},
+          {"scenario", s.name},
+          {"description", s.description},
+          {"duration_s", rounded(s.duration)},
+          {"time_step_s", rounded(s.time_step)},
+          {"agents", agents},
+          {"roundabout", ring},
+          {"roads", roads}};
+}
+
+json metrics_json(const mm::sim::run_metrics& m, const std::string& policy, bool with_cpu) {
+  return {{"agent", m.agent},
+          {"policy", policy},
+          {"crash", m.crash},
+          {"crash_time_s", optional_number(m.crash_time_s)},
+          {"crash_with", m.crash ? json(m.crash_with) : json(nullptr)},
+          {"min_dist_m", optional_number(m.min_dist_m)},
+          {"min_dist_time_s", optional_number(m.min_dist_time_s)},
+          {"closest_agent", m.closest_agent.empty() ? json(nullptr) : json(m.closest_agent)},
+          {"ttc_at_min_s", optional_number(m.ttc_at_min_s)},
+          {"speed_kmh", optional_number(m.speed_kmh)},
+          {"bypass", std::string(mm::sim::to_string(m.bypass))},
+          {"lateral_offset_at_min_m", rounded(m.lateral_offset_at_min_m)},
+          {"max_lateral_offset_m", rounded(m.max_lateral_offset_m)},
+          {"min_speed_kmh", rounded(m.min_speed_kmh)},
+          {"max_speed_kmh", rounded(m.max_speed_kmh)},
+          {"time_in_brake_s", rounded(m.time_in_brake_s)},
+          {"time_in_accel_s", rounded(m.time_in_accel_s)},
+          {"planning_steps", m.planning_steps},
+          {"cpu_median_us", with_cpu ? json(rounded(m.cpu_median_us, 3)) : json(nullptr)},
+          {"cpu_p99_us", with_cpu ? json(rounded(m.cpu_p99_us, 3)) : json(nullptr)}};
+}
+
+/// A CSV file filled through a buffer.
+class csv_file {
+ public:
+  csv_file(const std::filesystem::path& file, std::string_view header) : path_(file), out_(file, std::ios::binary) {
+    if (!out_) throw std::runtime_error("cannot write " + file.string());
+    fmt::format_to(std::back_inserter(buffer_), "{}\n", header);
+  }
+  fmt::memory_buffer& buffer() { return buffer_; }
+  void flush(bool force = false) {
+    if (!force && buffer_.size() < (1U << 20)) return;
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    buffer_.clear();
+    if (!out_) throw std::runtime_error("cannot write " + path_.string());
+  }
+  void close() {
+    flush(true);
+    out_.close();
+    if (!out_) throw std::runtime_error("cannot write " + path_.string());
+  }
+
+ private:
+  std::filesystem::path path_;
+  std::ofstream out_;
+  fmt::memory_buffer buffer_;
+};
+
+void write_text(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace
+
+std::string fixed(double value, int decimals) {
+  if (!std::isfinite(value)) return {};
+  std::string text = fmt::format("{:.{}f}", value, decimals);
+  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string::npos) text.erase(0, 1);
+  return text;
+}
+
+std::string scenario_policy(const mm::sim::scenario& s) {
+  if (s.planning_vehicles.empty()) return "none";
+  const std::string first = scenario_file::policy_name(s.planning_vehicles.front().planner.policy);
+  for (const mm::sim::planning_vehicle& v : s.planning_vehicles) {
+    if (scenario_file::policy_name(v.planner.policy) != first) return "mixed";
+  }
+  return first;
+}
+
+run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run_settings& settings) {
+  const mm::sim::scenario& s = loaded.scenario;
+  std::filesystem::create_directories(settings.out_dir);
+  const auto file = [&](const char* name) { return settings.out_dir / name; };
+  csv_file trajectories(file("trajectories.csv"), "t,agent,x,y,heading,speed,accel,curvature");
+  csv_file map(file("map.csv"), "t,agent,tau,mi_brake,mi_accel,excluded");
+  csv_file decisions(file("decisions.csv"), "t,agent,tau_bar,family,mode,ttc,cpu_us");
+
+  mm::sim::simulation sim(s, {settings.measure_cpu_time});
+  std::size_t shown_step = 0;
+  mm::sim::run(sim, [&](const mm::sim::simulation& now) {
+    const std::string t = fixed(now.time());
+    for (mm::sim::agent_id id = 0; id < now.agent_count(); ++id) {
+      const mm::sim::agent_state& a = now.state(id);
+      if (!a.present()) continue;
+      fmt::format_to(std::back_inserter(trajectories.buffer()), "{},{},{},{},{},{},{},{}\n", t, now.info(id).name,
+                     fixed(a.pose.position.x), fixed(a.pose.position.y), fixed(a.pose.heading), fixed(a.speed),
+                     fixed(a.acceleration), fixed(a.curvature));
+    }
+    for (mm::sim::agent_id id = 0; id < now.planning_vehicle_count(); ++id) {
+      if (!now.planned_now(id)) continue;
+      const mm::sim::plan_record& p = *now.last_plan(id);
+      const mm::plan_result& r = p.result;
+      const std::string& name = now.info(id).name;
+      for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+        fmt::format_to(std::back_inserter(map.buffer()), "{},{},{},{},{},{}\n", t, name, fixed(r.forecast_times[i]),
+                       fixed(r.mi_brake[i]), fixed(r.mi_accelerate[i]), r.excluded[i] ? 1 : 0);
+      }
+      fmt::format_to(std::back_inserter(decisions.buffer()), "{},{},{},{},{},{},{}\n", t, name, fixed(r.forecast_time),
+                     mm::to_string(r.selected_family), mm::to_string(r.mode), fixed(r.time_to_collision),
+                     settings.measure_cpu_time ? fixed(p.cpu_time_us, 3) : std::string());
+    }
+    trajectories.flush();
+    map.flush();
+    decisions.flush();
+    if (settings.progress != nullptr && (now.step_index() - shown_step >= 10 || now.ended())) {
+      shown_step = now.step_index();
+      *settings.progress << fmt::format("\r{}: t = {:.2f} / {:.2f} s", s.name, now.time(), s.duration) << std::flush;
+    }
+  });
+  if (settings.progress != nullptr) *settings.progress << "\r\033[K" << std::flush;
+  trajectories.close();
+  map.close();
+  decisions.close();
+
+  run_outcome outcome;
+  outcome.metrics = sim.all_metrics();
+  outcome.end_time = sim.time();
+
+  json parameters = json::object();
+  for (const scenario_file::parameter& p : loaded.parameters) parameters[p.name] = p.value;
+  json meetings = json::array();
+  for (const scenario_file::meeting_report& m : loaded.meetings) {
+    meetings.push_back({{"agents", json::array({m.first, m.second})},
+                        {"distances_m", json::array({rounded(m.first_distance), rounded(m.second_distance)})},
+                        {"travel_times_s", json::array({rounded(m.first_travel), rounded(m.second_travel)})},
+                        {"lag_s", rounded(m.lag)},
+                        {"start_times_s", json::array({rounded(m.first_start), rounded(m.second_start)})}});
+  }
+  json crashes = json::array();
+  for (const mm::sim::crash_event& c : sim.crashes()) {
+    crashes.push_back({{"time_s", rounded(c.time)}, {"agents", json::array({sim.info(c.first).name, sim.info(c.second).name})}});
+  }
+  json vehicles = json::array();
+  for (std::size_t i = 0; i < outcome.metrics.size(); ++i) {
+    vehicles.push_back(metrics_json(outcome.metrics[i], scenario_file::policy_name(s.planning_vehicles[i].planner.policy),
+                                    settings.measure_cpu_time));
+  }
+  const json summary = {{"format", "maneuvermap-summary/1"},
+                        {"scenario", s.name},
+                        {"policy", scenario_policy(s)},
+                        {"seed", s.seed},
+                        {"parameters", parameters},
+                        {"duration_s", rounded(s.duration)},
+                        {"time_step_s", rounded(s.time_step)},
+                        {"end_time_s", rounded(outcome.end_time)},
+                        {"cpu_timing", settings.measure_cpu_time},
+                        {"meetings", meetings},
+                        {"crashes", crashes},
+                        {"vehicles", vehicles}};
+  write_text(file("summary.json"), summary.dump(2) + "\n");
+  write_text(file("scene.json"), scene_json(loaded).dump(1) + "\n");
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+    outcome.files.push_back(file(name).string());
+  }
+  return outcome;
+}
+
+std::string metrics_table(const std::vector<mm::sim::run_metrics>& metrics, bool with_cpu) {
+  std::vector<std::vector<std::string>> rows{{"agent", "crash", "min_dist_m", "ttc_at_min_s", "speed_kmh", "bypass",
+                                              "min_speed_kmh", "max_speed_kmh", "time_in_brake_s", "time_in_accel_s"}};
+  if (with_cpu) {
+    rows[0].push_back("cpu_median_us");
+    rows[0].push_back("cpu_p99_us");
+  }
+  const auto opt = [](const std::optional<double>& v, int decimals) { return v ? fixed(*v, decimals) : std::string("-"); };
+  for (const mm::sim::run_metrics& m : metrics) {
+    std::vector<std::string> row{m.agent,
+                                 m.crash ? "yes" : "no",
+                                 opt(m.min_dist_m, 3),
+                                 opt(m.ttc_at_min_s, 3),
+                                 opt(m.speed_kmh, 1),
+                                 std::string(mm::sim::to_string(m.bypass)),
+                                 fixed(m.min_speed_kmh, 1),
+                                 fixed(m.max_speed_kmh, 1),
+                                 fixed(m.time_in_brake_s, 2),
+                                 fixed(m.time_in_accel_s, 2)};
+    if (with_cpu) {
+      row.push_back(fixed(m.cpu_median_us, 0));
+      row.push_back(fixed(m.cpu_p99_us, 0));
+    }
+    rows.push_back(std::move(row));
+  }
+  std::vector<std::size_t> widths(rows[0].size(), 0);
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < row.size(); ++c) widths[c] = std::max(widths[c], row[c].size());
+  }
+  std::string out;
+  for (const auto& row : rows) {
+    for (std::size_t c = 0; c < row.size(); ++c) {
+      // Names and words left-aligned, numbers right-aligned.
+      const bool left = c == 0 || c == 1 || c == 5;
+      out += c == 0 ? "" : "  ";
+      out += left ? fmt::format("{:<{}}", row[c], widths[c]) : fmt::format("{:>{}}", row[c], widths[c]);
+    }
+    while (!out.empty() && out.back() == ' ') out.pop_back();
+    out += "\n";
+  }
+  return out;
+}
+
+snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::string& agent, double time,
+                       std::optional<double> tau) {
+  const mm::sim::scenario& s = loaded.scenario;
+  if (!std::isfinite(time) || time < 0.0 || time > s.duration + 1e-9) {
+    throw input_error("--time " + fixed(time, 3) + ": expected a time from 0 to the duration " + fixed(s.duration, 3) + " s");
+  }
+  mm::sim::simulation sim(s);
+  const std::optional<mm::sim::agent_id> id = sim.find(agent);
+  if (!id || *id >= sim.planning_vehicle_count()) {
+    std::string names;
+    for (const mm::sim::planning_vehicle& v : s.planning_vehicles) names += (names.empty() ? "" : ", ") + v.name;
+    throw input_error("--agent " + agent + ": " + (id ? "not a planning vehicle" : "no such agent") +
+                      " (planning vehicles: " + (names.empty() ? "none" : names) + ")");
+  }
+  const double tolerance = 1e-9 * std::max(1.0, time);
+  while (!sim.ended() && sim.time() < time - tolerance) sim.step();
+  if (sim.time() < time - tolerance) {
+    throw input_error("--time " + fixed(time, 3) + ": the run ended at t = " + fixed(sim.time(), 3) +
+                      " s (a crash, or every planning vehicle finished its path)");
+  }
+  if (sim.state(*id).status != mm::sim::agent_status::active) {
+    throw input_error("--agent " + agent + ": not driving at t = " + fixed(sim.time(), 3) + " s (status " +
+                      std::string(mm::sim::to_string(sim.state(*id).status)) + ")");
+  }
+  snapshot shot;
+  shot.time = sim.time();
+  shot.input = *sim.planning_input(*id);
+  shot.input.config.record_samples = true;
+  shot.result = mm::plan(shot.input);
+  if (!shot.result.ok() || !shot.result.samples) throw std::runtime_error("re-planning failed: " + shot.result.error);
+  const std::vector<double>& taus = shot.result.forecast_times;
+  std::vector<std::size_t> selected;
+  for (std::size_t i = 0; i < taus.size(); ++i) {
+    if (!tau || std::abs(taus[i] - *tau) <= 1e-6) selected.push_back(i);
+  }
+  if (tau && selected.empty()) {
+    throw input_error("--tau " + fixed(*tau, 3) + ": not on the forecast grid (0 to " + fixed(taus.back(), 3) +
+                      " s in steps of " + fixed(shot.input.config.forecast_step, 3) + " s)");
+  }
+  const mm::sample_snapshot& samples = *shot.result.samples;
+  for (std::size_t i : selected) {
+    for (std::size_t m = 0; m < samples.maneuvers.size(); ++m) {
+      shot.rows.push_back({taus[i], samples.families[m], samples.maneuvers[m], samples.end_points[m],
+                           samples.area_weights[m], samples.safe_by_forecast[i][m] != 0});
+    }
+  }
+  return shot;
+}
+
+void write_snapshot_csv(std::ostream& out, const snapshot& shot) {
+  fmt::memory_buffer buffer;
+  fmt::format_to(std::back_inserter(buffer), "tau,family,accel,curvature,end_x,end_y,area_weight,safe\n");
+  for (const snapshot_row& r : shot.rows) {
+    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", fixed(r.forecast_time), mm::to_string(r.fam),
+                   fixed(r.u.acceleration), fixed(r.u.curvature), fixed(r.end_point.x), fixed(r.end_point.y),
+                   fixed(r.area_weight), r.safe ? 1 : 0);
+  }
+  out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+}
+
+}  // namespace mm::cli

@@ -1,0 +1,180 @@
+// `maneuvermap`: runs scenario files and writes what they produce (docs/outputs.md).
+// Exit codes: 0 success, 2 bad input (scenario file, option value, agent, time), 1 internal error.
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+
+#include "mm/cli/commands.hpp"
+#include "mm/scenario_file/builtin.hpp"
+
+namespace {
+
+namespace sf = mm::scenario_file;
+
+constexpr int exit_ok = 0;
+constexpr int exit_internal = 1;
+constexpr int exit_bad_input = 2;
+
+/// Options shared by the commands that load a scenario.
+struct scenario_options {
+  std::string file;
+  std::vector<std::string> overrides;
+  std::string policy;
+  std::optional<std::uint64_t> seed;
+};
+
+void add_scenario_options(CLI::App& command, scenario_options& o, bool with_policy) {
+  command.add_option("FILE", o.file, "Scenario file, or the name of a built-in scenario (maneuvermap list)")->required();
+  command.add_option("--set", o.overrides, "Override a parameter of the scenario: NAME=VALUE (repeatable)")
+      ->type_name("NAME=VALUE");
+  if (with_policy) {
+    command.add_option("--policy", o.policy, "Forecast policy of every planning vehicle: adj or const:SECONDS")
+        ->type_name("adj|const:SECONDS");
+    command.add_option("--seed", o.seed, "Seed of the sensor noise (replaces the scenario's)");
+  }
+}
+
+sf::loaded_scenario load(const scenario_options& o) {
+  sf::load_options options;
+  for (const std::string& text : o.overrides) {
+    auto parsed = sf::parse_override(text);
+    if (!parsed) throw mm::cli::input_error("--set " + text + ": expected NAME=VALUE with a finite number VALUE");
+    options.overrides.push_back(*parsed);
+  }
+  if (!o.policy.empty()) {
+    options.policy = sf::parse_policy(o.policy);
+    if (!options.policy) throw mm::cli::input_error("--policy " + o.policy + ": expected adj or const:SECONDS, e.g. const:1.0");
+  }
+  options.seed = o.seed;
+  return sf::load(o.file, options);
+}
+
+std::string first_line(std::string_view text) {
+  const std::size_t end = text.find('\n');
+  return std::string(end == std::string_view::npos ? text : text.substr(0, end));
+}
+
+int list_command() {
+  std::size_t width = 0;
+  for (const sf::builtin_scenario& b : sf::builtin_scenarios()) width = std::max(width, b.name.size());
+  for (const sf::builtin_scenario& b : sf::builtin_scenarios()) {
+    const sf::loaded_scenario loaded = sf::load_text(b.text, "builtin:" + std::string(b.name));
+    std::cout << fmt::format("{:<{}}  {}\n", b.name, width, first_line(loaded.scenario.description));
+  }
+  return exit_ok;
+}
+
+int validate_command(const scenario_options& o) {
+  const sf::loaded_scenario loaded = load(o);
+  const mm::sim::scenario& s = loaded.scenario;
+  std::cout << fmt::format("{}: valid ({}): {} planning, {} scripted, {} pedestrians, {} static; {} s at {} s steps\n",
+                           loaded.source, s.name, s.planning_vehicles.size(), s.scripted_vehicles.size(),
+                           s.pedestrians.size(), s.static_obstacles.size(), mm::cli::fixed(s.duration, 2),
+                           mm::cli::fixed(s.time_step, 3));
+  for (const sf::parameter& p : loaded.parameters) std::cout << fmt::format("  parameter {} = {}\n", p.name, p.value);
+  for (const sf::meeting_report& m : loaded.meetings) {
+    std::cout << fmt::format("  meet {} and {}: {} m ({} s) and {} m ({} s), lag {} s: start at {} s and {} s\n", m.first,
+                             m.second, mm::cli::fixed(m.first_distance, 3), mm::cli::fixed(m.first_travel, 3),
+                             mm::cli::fixed(m.second_distance, 3), mm::cli::fixed(m.second_travel, 3),
+                             mm::cli::fixed(m.lag, 3), mm::cli::fixed(m.first_start, 3), mm::cli::fixed(m.second_start, 3));
+  }
+  return exit_ok;
+}
+
+int run_command(const scenario_options& o, const std::string& out, bool timing) {
+  const sf::loaded_scenario loaded = load(o);
+  mm::cli::run_settings settings;
+  settings.out_dir = out.empty() ? std::filesystem::path("out") / loaded.scenario.name : std::filesystem::path(out);
+  settings.measure_cpu_time = timing;
+  settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
+  const mm::cli::run_outcome outcome = mm::cli::run_scenario(loaded, settings);
+  std::cout << fmt::format("{}: policy {}, seed {}, ended at t = {} s\n", loaded.scenario.name,
+                           mm::cli::scenario_policy(loaded.scenario), loaded.scenario.seed,
+                           mm::cli::fixed(outcome.end_time, 2));
+  std::cout << mm::cli::metrics_table(outcome.metrics, timing);
+  std::cout << "written to " << settings.out_dir.string() << "/\n";
+  return exit_ok;
+}
+
+int snapshot_command(const scenario_options& o, double time, const std::string& agent, std::optional<double> tau,
+                     const std::string& out) {
+  const sf::loaded_scenario loaded = load(o);
+  const mm::cli::snapshot shot = mm::cli::take_snapshot(loaded, agent, time, tau);
+  if (out.empty()) {
+    mm::cli::write_snapshot_csv(std::cout, shot);
+    std::cout.flush();
+    if (!std::cout) throw std::runtime_error("cannot write to standard output");
+    return exit_ok;
+  }
+  std::ofstream file(out, std::ios::binary);
+  if (!file) throw std::runtime_error("cannot write " + out);
+  mm::cli::write_snapshot_csv(file, shot);
+  file.close();
+  if (!file) throw std::runtime_error("cannot write " + out);
+  return exit_ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"maneuvermap: collision-avoidance planning with Maneuverability Maps, and its traffic simulator"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "maneuvermap 0.1.0");
+
+  CLI::App* list = app.add_subcommand("list", "List the built-in scenarios with a one-line description");
+
+  scenario_options validate_options;
+  CLI::App* validate = app.add_subcommand("validate", "Check a scenario file; exit 0 if valid, 2 if not");
+  add_scenario_options(*validate, validate_options, false);
+
+  scenario_options run_options;
+  std::string run_out;
+  bool timing = false;
+  CLI::App* run = app.add_subcommand("run", "Run a scenario: print the run metrics and write the output files");
+  add_scenario_options(*run, run_options, true);
+  run->add_option("--out", run_out, "Output directory (default out/<scenario name>)")->type_name("DIR");
+  run->add_flag("--timing", timing, "Measure the CPU time of each planning step (outputs are then not reproducible)");
+
+  scenario_options snapshot_options;
+  double snapshot_time = 0.0;
+  std::string snapshot_agent;
+  std::optional<double> snapshot_tau;
+  std::string snapshot_out;
+  CLI::App* snapshot = app.add_subcommand(
+      "snapshot", "Run to a time, re-plan one planning vehicle and write its sampled maneuvers and their safety as CSV");
+  add_scenario_options(*snapshot, snapshot_options, true);
+  snapshot->add_option("--time", snapshot_time, "Simulation time to stop at [s]")->required()->type_name("SECONDS");
+  snapshot->add_option("--agent", snapshot_agent, "The planning vehicle to re-plan")->required()->type_name("NAME");
+  snapshot->add_option("--tau", snapshot_tau, "Only this forecast time [s] (default: every one)")->type_name("SECONDS");
+  snapshot->add_option("--out", snapshot_out, "CSV file to write (default: standard output)")->type_name("FILE.csv");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+    std::cerr << "maneuvermap: " << e.what() << "\nRun with --help for more information.\n";
+    return exit_bad_input;
+  }
+
+  try {
+    if (list->parsed()) return list_command();
+    if (validate->parsed()) return validate_command(validate_options);
+    if (run->parsed()) return run_command(run_options, run_out, timing);
+    if (snapshot->parsed()) return snapshot_command(snapshot_options, snapshot_time, snapshot_agent, snapshot_tau, snapshot_out);
+  } catch (const sf::scenario_error& e) {
+    std::cerr << "maneuvermap: " << e.what() << "\n";
+    return exit_bad_input;
+  } catch (const mm::cli::input_error& e) {
+    std::cerr << "maneuvermap: " << e.what() << "\n";
+    return exit_bad_input;
+  } catch (const std::exception& e) {
+    std::cerr << "maneuvermap: error: " << e.what() << "\n";
+    return exit_internal;
+  }
+  return exit_internal;
+}
