@@ -1,0 +1,143 @@
+// The built `maneuvermap` executable: help, exit codes and messages.
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "cli/support.hpp"
+
+namespace {
+
+using mm::cli::testing::read_file;
+using mm::cli::testing::temp_dir;
+using mm::cli::testing::write_file;
+
+struct result {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs `maneuvermap ARGS` (ARGS is shell text) with its output captured.
+result run(const std::string& args, const std::string& tag) {
+  const temp_dir dir("binary_" + tag);
+  const std::string command = std::string(MANEUVERMAP_EXE) + " " + args + " >" + (dir / "out").string() + " 2>" +
+                              (dir / "err").string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(dir / "out");
+  r.err = read_file(dir / "err");
+  return r;
+}
+
+bool contains(const std::string& text, const std::string& piece) { return text.find(piece) != std::string::npos; }
+
+TEST(maneuvermap, help_lists_the_commands_and_exits_0) {
+  const result r = run("--help", "help");
+  EXPECT_EQ(r.code, 0);
+  for (const char* command : {"list", "validate", "run", "snapshot"}) EXPECT_TRUE(contains(r.out, command)) << r.out;
+}
+
+TEST(maneuvermap, every_command_has_help) {
+  for (const char* command : {"list", "validate", "run", "snapshot"}) {
+    const result r = run(std::string(command) + " --help", std::string("help_") + command);
+    EXPECT_EQ(r.code, 0) << command;
+    EXPECT_TRUE(contains(r.out, command)) << r.out;
+  }
+  EXPECT_TRUE(contains(run("run --help", "help_run_options").out, "--policy"));
+  EXPECT_TRUE(contains(run("snapshot --help", "help_snapshot_options").out, "--tau"));
+}
+
+TEST(maneuvermap, no_command_an_unknown_command_and_an_unknown_option_exit_2) {
+  EXPECT_EQ(run("", "none").code, 2);
+  const result unknown = run("fly", "unknown");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_TRUE(contains(unknown.err, "maneuvermap:")) << unknown.err;
+  EXPECT_EQ(run("run s1-crossing --fast", "unknown_option").code, 2);
+  EXPECT_EQ(run("run", "missing_file").code, 2);
+}
+
+TEST(maneuvermap, list_names_every_built_in_scenario) {
+  const result r = run("list", "list");
+  EXPECT_EQ(r.code, 0);
+  for (const char* name : {"s1-crossing", "s1-crossing-no-steering", "s2-roundabout", "s3-left-turn", "s4-pedestrian",
+                           "s4-pedestrian-kerb", "s5-several-obstacles"}) {
+    EXPECT_TRUE(contains(r.out, std::string(name) + " ")) << name;
+  }
+}
+
+TEST(maneuvermap, validate_accepts_a_built_in_and_prints_its_timing) {
+  const result r = run("validate s3-left-turn", "validate_ok");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "meet A and B: 47.000 m")) << r.out;
+}
+
+TEST(maneuvermap, validate_reports_a_bad_file_with_its_line_and_exits_2) {
+  const temp_dir dir("validate_bad");
+  write_file(dir / "bad.yaml", "format: maneuvermap-scenario/1\nname: bad\nduration_s: -3\nagents: []\n");
+  const result r = run("validate " + (dir / "bad.yaml").string(), "validate_bad");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "bad.yaml:3:13: duration_s: = -3: expected a positive number [s]")) << r.err;
+}
+
+TEST(maneuvermap, an_unknown_scenario_exits_2_and_suggests_a_built_in) {
+  const result r = run("run s4-pedestrain", "unknown_scenario");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "did you mean s4-pedestrian?")) << r.err;
+  EXPECT_EQ(run("validate /no/such/file.yaml", "missing").code, 2);
+}
+
+TEST(maneuvermap, bad_option_values_exit_2) {
+  const result policy = run("run s1-crossing --policy sideways", "bad_policy");
+  EXPECT_EQ(policy.code, 2);
+  EXPECT_TRUE(contains(policy.err, "--policy sideways: expected adj or const:SECONDS")) << policy.err;
+  EXPECT_EQ(run("run s1-crossing --policy const:0.3", "off_grid_policy").code, 2);
+  EXPECT_EQ(run("run s1-crossing --seed minus", "bad_seed").code, 2);
+  EXPECT_EQ(run("run s1-crossing --set a_kmh", "bad_set").code, 2);
+  const result unknown = run("run s1-crossing --set speed_kmh=3", "unknown_parameter");
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_TRUE(contains(unknown.err, "--set speed_kmh: unknown parameter")) << unknown.err;
+  EXPECT_EQ(run("snapshot s1-crossing --time 9 --agent A", "late_snapshot").code, 2);
+  EXPECT_EQ(run("snapshot s1-crossing --time 1 --agent C", "unknown_agent").code, 2);
+  EXPECT_EQ(run("snapshot s1-crossing --time 1", "missing_agent").code, 2);
+}
+
+TEST(maneuvermap, run_writes_the_five_files_and_prints_the_metrics) {
+  const temp_dir dir("run_ok");
+  write_file(dir / "short.yaml", R"(format: maneuvermap-scenario/1
+name: short
+duration_s: 0.3
+parameters: {v_mps: 10}
+agents:
+  - {name: A, kind: planning_vehicle, desired_speed_mps: $v_mps,
+     path: {start: {position_m: [0, 0], heading_deg: 0}, segments: [{straight_m: 100}]}}
+)");
+  const result r = run("run " + (dir / "short.yaml").string() + " --set v_mps=12 --policy const:0.5 --seed 3 --out " +
+                           (dir / "out").string(),
+                       "run_ok");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "short: policy const:0.5, seed 3")) << r.out;
+  EXPECT_TRUE(contains(r.out, "min_dist_m")) << r.out;
+  EXPECT_TRUE(r.err.empty()) << "no progress when stderr is not a terminal: " << r.err;
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+    EXPECT_FALSE(read_file(dir / "out" / name).empty()) << name;
+  }
+  EXPECT_TRUE(contains(read_file(dir / "out" / "summary.json"), "\"v_mps\": 12.0")) << read_file(dir / "out" / "summary.json");
+}
+
+TEST(maneuvermap, snapshot_writes_csv_to_standard_output) {
+  const result r = run("snapshot s1-crossing-no-steering --time 0.2 --agent A --tau 0", "snapshot_ok");
+  EXPECT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("tau,family,accel,curvature,end_x,end_y,area_weight,safe\n0.000000,brake,", 0), 0U) << r.out;
+}
+
+TEST(maneuvermap, an_output_directory_that_cannot_be_created_is_an_error_with_exit_1) {
+  const result r = run("run s4-pedestrian-kerb --out /dev/null/out", "unwritable");
+  EXPECT_EQ(r.code, 1);
+  EXPECT_TRUE(contains(r.err, "maneuvermap: error:")) << r.err;
+}
+
+}  // namespace

@@ -1,0 +1,294 @@
+// The built-in scenarios end to end through the code path of `maneuvermap run`, with the run
+// metrics each one is expected to produce, and the properties of the output files.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "cli/support.hpp"
+#include "mm/cli/commands.hpp"
+#include "sim/scenarios.hpp"
+
+namespace {
+
+using namespace mm::cli;
+using mm::cli::testing::csv_rows;
+using mm::cli::testing::read_file;
+using mm::cli::testing::temp_dir;
+namespace sf = mm::scenario_file;
+
+struct finished_run {
+  run_outcome outcome;
+  std::vector<std::vector<std::string>> decisions;  ///< rows of decisions.csv
+  nlohmann::json summary;
+};
+
+finished_run run_builtin(const std::string& name, const std::string& dir_name,
+                         std::vector<std::pair<std::string, double>> overrides = {}) {
+  sf::load_options options;
+  options.overrides = std::move(overrides);
+  const sf::loaded_scenario loaded = sf::load(name, options);
+  const temp_dir dir(dir_name);
+  run_settings settings;
+  settings.out_dir = dir.path();
+  finished_run r;
+  r.outcome = run_scenario(loaded, settings);
+  r.decisions = csv_rows(dir / "decisions.csv");
+  r.summary = nlohmann::json::parse(read_file(dir / "summary.json"));
+  return r;
+}
+
+/// The first time [s] of a non-nominal decision of family `fam`, or -1.
+double first_decision(const finished_run& r, const std::string& fam) {
+  for (const auto& row : r.decisions) {
+    if (row[4] != "nominal" && row[3] == fam) return std::stod(row[0]);
+  }
+  return -1.0;
+}
+
+// --- S1 ----------------------------------------------------------------------------------------
+
+TEST(builtin_scenarios, s1_a_naive_a_hits_b_at_full_speed) {
+  const finished_run r = run_builtin("s1-crossing", "s1_naive", {{"avoid", 0.0}});
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_TRUE(m.crash);
+  EXPECT_EQ(m.crash_with, "B");
+  EXPECT_NEAR(*m.speed_kmh, 40.0, 1e-9);
+  EXPECT_EQ(m.planning_steps, 0U);
+  // Both reach the origin at 5.4 s; the footprints overlap a little before.
+  EXPECT_GT(*m.crash_time_s, 5.0);
+  EXPECT_LT(*m.crash_time_s, 5.4);
+}
+
+TEST(builtin_scenarios, s1_with_avoidance_a_yields_and_passes_behind_b) {
+  const finished_run r = run_builtin("s1-crossing", "s1_avoid");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_EQ(m.closest_agent, "B");
+  // Measured: 0.35 m at 31 km/h, slowest 30 km/h, 3.4 s braking, round B's tail on the left.
+  // The planner keeps its 0.3 m margin up to the 50 ms collision sampling (docs/simulator.md §12).
+  EXPECT_GT(*m.min_dist_m, 0.15);
+  EXPECT_LT(*m.min_dist_m, 1.5);
+  EXPECT_GT(m.time_in_brake_s, 1.0);
+  EXPECT_LT(m.min_speed_kmh, 36.0);
+  EXPECT_GT(m.min_speed_kmh, 15.0);
+  EXPECT_EQ(m.bypass, mm::sim::bypass_side::left);
+  EXPECT_GT(first_decision(r, "brake"), 1.8);  // not before B appears
+}
+
+TEST(builtin_scenarios, s1_without_steering_a_only_brakes_and_stays_on_its_line) {
+  const finished_run r = run_builtin("s1-crossing-no-steering", "s1_nosteer");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_GT(*m.min_dist_m, 0.15);
+  EXPECT_EQ(m.bypass, mm::sim::bypass_side::none);
+  EXPECT_LT(m.max_lateral_offset_m, 1e-9);  // κ_max = 0: it never leaves y = 0
+  EXPECT_GT(m.time_in_brake_s, 1.0);
+  EXPECT_LT(m.min_speed_kmh, 36.0);
+}
+
+// --- S2 ----------------------------------------------------------------------------------------
+
+TEST(builtin_scenarios, s2_a_brakes_for_b_then_accelerates_once_b_leaves) {
+  const finished_run r = run_builtin("s2-roundabout", "s2");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  // Measured: brake-and-steer from 0.79 s, accelerate-and-steer from 1.82 s; slowest 32 km/h
+  // (from 40 km/h), closest 1.35 m; then back up towards its desired 45 km/h.
+  const double brake = first_decision(r, "brake");
+  const double accelerate = first_decision(r, "accelerate");
+  ASSERT_GT(brake, 0.0);
+  ASSERT_GT(accelerate, 0.0);
+  EXPECT_LT(brake, accelerate);
+  EXPECT_LT(m.min_speed_kmh, 37.0);
+  EXPECT_GT(m.min_speed_kmh, 25.0);
+  EXPECT_GT(m.max_speed_kmh, 42.0);
+  EXPECT_GT(*m.min_dist_m, 0.5);
+  EXPECT_GT(m.time_in_brake_s, 0.5);
+}
+
+// --- S3 ----------------------------------------------------------------------------------------
+
+TEST(builtin_scenarios, s3_b_turns_too_late_for_a_to_stop_and_a_hits_it_slower) {
+  // The default cell: A 30 km/h, B 35 km/h, ADJ, urgent steering, noisy sensing. B's turn is
+  // visible only 10.5 m (1.08 s) before the conflict point, and nothing before the turn tells A
+  // about it: A reacts about a quarter of a second into the turn and cannot stop in time.
+  const finished_run r = run_builtin("s3-left-turn", "s3");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  const double b_start = r.summary["meetings"][0]["start_times_s"][1];
+  const double b_turns = b_start + 16.5426 / (35.0 / 3.6);
+  EXPECT_TRUE(m.crash);
+  EXPECT_EQ(m.crash_with, "B");
+  EXPECT_TRUE(std::any_of(r.decisions.begin(), r.decisions.end(), [](const auto& row) { return row[4] != "nominal"; }))
+      << "A reacts";
+  for (const auto& row : r.decisions) {
+    if (row[4] == "urgent" || row[4] == "near_crash") {
+      EXPECT_GT(std::stod(row[0]), b_turns) << "an urgent maneuver before B turned";
+    }
+  }
+  EXPECT_LT(*m.speed_kmh, 30.0 - 5.0);  // measured 19 km/h
+}
+
+// --- S4 ----------------------------------------------------------------------------------------
+
+TEST(builtin_scenarios, s4_a_naive_a_hits_the_pedestrian) {
+  const finished_run r = run_builtin("s4-pedestrian", "s4_naive", {{"avoid", 0.0}});
+  EXPECT_TRUE(r.outcome.metrics.at(0).crash);
+  EXPECT_EQ(r.outcome.metrics.at(0).crash_with, "P");
+}
+
+TEST(builtin_scenarios, s4_the_pedestrian_is_not_hit) {
+  const finished_run r = run_builtin("s4-pedestrian", "s4");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_EQ(m.closest_agent, "P");
+  EXPECT_GT(*m.min_dist_m, 0.15);  // measured 0.32 m
+  EXPECT_GT(m.time_in_brake_s + m.time_in_accel_s, 1.0);
+  EXPECT_NE(m.bypass, mm::sim::bypass_side::none);  // it steers round P (measured: left, in front of P)
+}
+
+TEST(builtin_scenarios, s4_a_pedestrian_stopping_at_the_kerb_costs_a_little_speed_and_nothing_else) {
+  const finished_run r = run_builtin("s4-pedestrian-kerb", "s4_kerb");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_GT(*m.min_dist_m, 0.5);  // measured 0.86 m: P stands at the kerb, A's side 1.2 m away less its swerve
+  EXPECT_GT(m.time_in_brake_s, 0.5);
+  EXPECT_GT(m.min_speed_kmh, 35.0);  // measured 39.7 km/h: the forecast was wrong, the reaction small
+  EXPECT_NEAR(m.max_speed_kmh, 40.0, 0.5);
+}
+
+// --- S5 ----------------------------------------------------------------------------------------
+
+TEST(builtin_scenarios, s5_a_naive_a_hits_the_first_crossing_vehicle) {
+  const finished_run r = run_builtin("s5-several-obstacles", "s5_naive", {{"avoid", 0.0}});
+  EXPECT_TRUE(r.outcome.metrics.at(0).crash);
+  EXPECT_EQ(r.outcome.metrics.at(0).crash_with, "C1");
+}
+
+TEST(builtin_scenarios, s5_a_gets_past_two_crossing_vehicles_and_a_pedestrian) {
+  if (mm::sim::testing::sanitize_scale()) GTEST_SKIP() << "three obstacles for 9 s: too slow under the sanitizers";
+  const finished_run r = run_builtin("s5-several-obstacles", "s5");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_GT(*m.min_dist_m, 0.15);  // measured 0.31 m
+  EXPECT_GT(m.time_in_brake_s, 1.0);
+  EXPECT_LT(m.min_speed_kmh, 38.0);
+}
+
+// --- output files ------------------------------------------------------------------------------
+
+TEST(cli_outputs, the_same_scenario_parameters_and_seed_give_byte_identical_files) {
+  const sf::loaded_scenario loaded = sf::load("s3-left-turn");  // noisy sensing, so the seed matters
+  const temp_dir first("determinism_1");
+  const temp_dir second("determinism_2");
+  run_settings settings;
+  settings.out_dir = first.path();
+  const run_outcome a = run_scenario(loaded, settings);
+  settings.out_dir = second.path();
+  run_scenario(sf::load("s3-left-turn"), settings);
+  ASSERT_EQ(a.files.size(), 5U);
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+    const std::string one = read_file(first / name);
+    EXPECT_FALSE(one.empty()) << name;
+    EXPECT_EQ(one, read_file(second / name)) << name << " differs between two identical runs";
+    EXPECT_EQ(one.find("nan"), std::string::npos) << name;
+    EXPECT_EQ(one.find("inf"), std::string::npos) << name;
+  }
+  sf::load_options other_seed;
+  other_seed.seed = 2;
+  const temp_dir third("determinism_3");
+  settings.out_dir = third.path();
+  run_scenario(sf::load("s3-left-turn", other_seed), settings);
+  EXPECT_NE(read_file(first / "decisions.csv"), read_file(third / "decisions.csv")) << "the seed must change the noise";
+  EXPECT_EQ(read_file(first / "scene.json"), read_file(third / "scene.json"));
+}
+
+TEST(cli_outputs, the_files_have_their_documented_columns_and_one_row_per_agent_step_and_plan) {
+  const std::string text = R"(format: maneuvermap-scenario/1
+name: short
+duration_s: 0.5
+agents:
+  - {name: A, kind: planning_vehicle, desired_speed_mps: 10,
+     path: {start: {position_m: [0, 0], heading_deg: 0}, segments: [{straight_m: 100}]}}
+  - {name: B, kind: scripted_vehicle, speed_mps: 10, start_time_s: 0.2,
+     path: {start: {position_m: [20, 10], heading_deg: -90}, segments: [{straight_m: 40}]}}
+  - {name: wall, kind: static_obstacle, vertices_m: [[30, -5], [31, -5], [31, -3], [30, -3]]}
+)";
+  const temp_dir dir("columns");
+  run_settings settings;
+  settings.out_dir = dir.path();
+  settings.measure_cpu_time = true;
+  const run_outcome outcome = run_scenario(sf::load_text(text, "short.yaml"), settings);
+  std::string header;
+  const auto trajectories = csv_rows(dir / "trajectories.csv", &header);
+  EXPECT_EQ(header, "t,agent,x,y,heading,speed,accel,curvature");
+  // 51 instants (0 to 0.5 s); A and the wall at each, B from 0.2 s on: 51 + 51 + 31.
+  EXPECT_EQ(trajectories.size(), 133U);
+  EXPECT_EQ(trajectories[0][0], "0.000000");
+  EXPECT_EQ(trajectories[0][1], "A");
+  EXPECT_EQ(trajectories[0][5], "10.000000");
+  const auto map = csv_rows(dir / "map.csv", &header);
+  EXPECT_EQ(header, "t,agent,tau,mi_brake,mi_accel,excluded");
+  const auto decisions = csv_rows(dir / "decisions.csv", &header);
+  EXPECT_EQ(header, "t,agent,tau_bar,family,mode,ttc,cpu_us");
+  EXPECT_EQ(decisions.size(), 50U);  // planned at every instant but the last, at which the run ended
+  EXPECT_EQ(map.size(), 17U * decisions.size());
+  EXPECT_EQ(outcome.metrics.at(0).planning_steps, 50U);
+  for (const auto& row : decisions) {
+    ASSERT_EQ(row.size(), 7U);
+    EXPECT_FALSE(row[6].empty()) << "--timing fills cpu_us";
+    EXPECT_TRUE(row[3] == "brake" || row[3] == "accelerate");
+  }
+  EXPECT_EQ(decisions[0][5], "") << "no obstacle yet: TTC is infinite, written empty";
+  const nlohmann::json summary = nlohmann::json::parse(read_file(dir / "summary.json"));
+  EXPECT_EQ(summary["format"], "maneuvermap-summary/1");
+  EXPECT_EQ(summary["policy"], "adj");
+  EXPECT_TRUE(summary["cpu_timing"].get<bool>());
+  EXPECT_GT(summary["vehicles"][0]["cpu_median_us"].get<double>(), 0.0);
+  const nlohmann::json scene = nlohmann::json::parse(read_file(dir / "scene.json"));
+  EXPECT_EQ(scene["format"], "maneuvermap-scene/1");
+  ASSERT_EQ(scene["agents"].size(), 3U);
+  EXPECT_EQ(scene["agents"][1]["kind"], "scripted_vehicle");
+  EXPECT_EQ(scene["agents"][1]["path_m"].size(), 2U);  // a straight line: its two ends
+  EXPECT_EQ(scene["agents"][2]["vertices_m"].size(), 4U);
+  EXPECT_TRUE(scene["roundabout"].is_null());
+}
+
+TEST(cli_outputs, without_timing_the_cpu_column_is_empty_and_the_summary_cpu_fields_are_null) {
+  const temp_dir dir("no_timing");
+  run_settings settings;
+  settings.out_dir = dir.path();
+  sf::load_options options;
+  options.overrides = {{"avoid", 0.0}};
+  run_scenario(sf::load("s4-pedestrian-kerb", options), settings);
+  for (const auto& row : csv_rows(dir / "decisions.csv")) EXPECT_EQ(row.size(), 7U);
+  const nlohmann::json summary = nlohmann::json::parse(read_file(dir / "summary.json"));
+  EXPECT_TRUE(summary["vehicles"][0]["cpu_median_us"].is_null());
+  EXPECT_TRUE(summary["vehicles"][0]["cpu_p99_us"].is_null());
+  EXPECT_EQ(summary["parameters"]["avoid"], 0.0);
+  EXPECT_EQ(summary["parameters"]["a_kmh"], 40.0);
+  EXPECT_EQ(summary["meetings"][0]["agents"][1], "P");
+}
+
+TEST(cli_outputs, the_roundabout_and_its_arms_are_in_the_scene) {
+  const temp_dir dir("scene_roundabout");
+  run_settings settings;
+  settings.out_dir = dir.path();
+  sf::loaded_scenario loaded = sf::load("s2-roundabout");
+  loaded.scenario.duration = 0.05;
+  run_scenario(loaded, settings);
+  const nlohmann::json scene = nlohmann::json::parse(read_file(dir / "scene.json"));
+  EXPECT_EQ(scene["roundabout"]["radius_m"], 25.0);
+  ASSERT_EQ(scene["roundabout"]["arms"].size(), 4U);
+  const nlohmann::json& east = scene["roundabout"]["arms"][0];
+  EXPECT_EQ(east["name"], "east");
+  // The entry lane starts 60 m out on y = 1.75 (right of westbound travel) and ends on the ring.
+  EXPECT_EQ(east["entry_lane_m"][0][1], 1.75);
+  const double x = east["entry_lane_m"].back()[0];
+  const double y = east["entry_lane_m"].back()[1];
+  EXPECT_NEAR(std::hypot(x, y), 25.0, 1e-3);
+  EXPECT_GT(scene["agents"][0]["path_m"].size(), 50U);  // arcs are sampled every 0.5 m
+}
+
+}  // namespace
