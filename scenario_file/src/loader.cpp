@@ -154,7 +154,9 @@ class mapper {
         ctx_.parameters.push_back({name, v, v});
       }
     }
-    for (const auto& [name, value] : options_.overrides) {
+    for (const auto& override_entry : options_.overrides) {
+      const std::string& name = override_entry.first;
+      const double value = override_entry.second;
       auto it = std::find_if(ctx_.parameters.begin(), ctx_.parameters.end(), [&](const parameter& p) { return p.name == name; });
       if (it == ctx_.parameters.end()) {
         std::vector<std::string> names;
