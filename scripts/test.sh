@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds, and runs the whole test suite twice: an optimised build with
-# warnings as errors, then a build under AddressSanitizer and UndefinedBehaviorSanitizer.
+# warnings as errors, then a build under AddressSanitizer and UndefinedBehaviorSanitizer; then
+# fuzzes the scenario parser for 30 s (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -15,4 +16,5 @@ cmake -S . -B build/sanitize -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DMM_WAR
 cmake --build build/sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   MM_TEST_SCALE=sanitize ctest --test-dir build/sanitize --output-on-failure -j "$jobs"
-echo "all tests passed (release and address+undefined sanitizers)"
+bash scripts/fuzz.sh 30
+echo "all tests passed (release and address+undefined sanitizers), and 30 s of fuzzing found nothing"

@@ -25,7 +25,8 @@ scenario_error::scenario_error(std::string source, int line, int column, std::st
         std::string text = source;
         if (line > 0) text.append(":").append(std::to_string(line)).append(":").append(std::to_string(column));
         text.append(": ");
-        if (!field.empty()) text.append(field).append(": ");
+        // "field = value: expected ..." reads as one phrase; other problems follow "field: ".
+        if (!field.empty()) text.append(field).append(problem.rfind("= ", 0) == 0 ? " " : ": ");
         return text.append(problem);
       }()),
       source_(std::move(source)),

@@ -80,7 +80,7 @@ TEST(maneuvermap, validate_reports_a_bad_file_with_its_line_and_exits_2) {
   write_file(dir / "bad.yaml", "format: maneuvermap-scenario/1\nname: bad\nduration_s: -3\nagents: []\n");
   const result r = run("validate " + (dir / "bad.yaml").string(), "validate_bad");
   EXPECT_EQ(r.code, 2);
-  EXPECT_TRUE(contains(r.err, "bad.yaml:3:13: duration_s: = -3: expected a positive number [s]")) << r.err;
+  EXPECT_TRUE(contains(r.err, "bad.yaml:3:13: duration_s = -3: expected a positive number [s]")) << r.err;
 }
 
 TEST(maneuvermap, an_unknown_scenario_exits_2_and_suggests_a_built_in) {
