@@ -281,7 +281,7 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
                         {"crashes", crashes},
                         {"vehicles", vehicles}};
   write_text(file("summary.json"), summary.dump(2) + "\n");
-  write_text(file("scene.json"), scene_json(loaded).dump(1) + "\n");
+  write_text(file("scene.json"), scene_json(loaded).dump() + "\n");  // compact: mostly long point lists
   for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
     outcome.files.push_back(file(name).string());
   }
