@@ -7,8 +7,16 @@
 
 namespace mm {
 
+double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle, double tau, double t,
+                    const collision_window& window) {
+  const pose p = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
+  return signed_distance(place(ego.shape, p), place(obstacle.shape, forecast_pose(obstacle.motion, tau, t))) -
+         window.margin;
+}
+
 ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window)
     : ego_(ego),
+      samples_(samples),
       window_(window),
       sample_count_(samples.size()),
       times_(sample_times(window.duration, window.time_step)) {
@@ -108,11 +116,9 @@ std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obs
                          sweep.largest_speed() + motion.speed,
                          distance_rate,
                          sweep.window().time_step};
-  const auto clearance_at = [&](double tau, std::size_t k, std::size_t m) {
-    return signed_distance(place(sweep.ego().shape, sweep.at(k, m).position, sweep.direction(k, m)),
-                           place(obstacle.shape, forecast_pose(motion, tau, times[k]))) -
-           w.margin;
-  };
+  const ego_state& ego = sweep.ego();
+  const collision_window& window = sweep.window();
+  const maneuver_samples& samples = sweep.samples();
   std::vector<clearance_set> result;
   result.reserve(forecast_times.size());
   // The walk over the times t ≤ τ, where every forecast agrees; [0, shared_until) is done.
@@ -132,7 +138,7 @@ std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obs
       const running_minimum& r = walk.minimum[m];
       double c = r.value;
       if (c > -walk_cap && c < walk_cap) {
-        c = refined_minimum(times, r.argmin, [&](std::size_t j) { return clearance_at(tau, j, m); }, distance_rate,
+        c = refined_minimum(times, r.argmin, [&](double t) { return clearance_at(ego, samples.maneuvers[m], obstacle, tau, t, window); },
                             r.value);
       }
       clearance[m] = std::clamp(c, -cap, cap);
@@ -147,24 +153,14 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
                                                 std::span<const double> forecast_times,
                                                 const collision_window& window) {
   const std::vector<double> times = sample_times(window.duration, window.time_step);
-  const double rate = speed_after(ego.speed, ego.limits.max_acceleration, window.horizon, ego.limits.speed_cap) *
-                          (1.0 + max_curvature(ego.speed, ego.limits) * bounding_radius(ego.shape)) +
-                      obstacle.motion.speed + std::abs(obstacle.motion.yaw_rate) * bounding_radius(obstacle.shape);
   std::vector<clearance_set> result;
   for (const double tau : forecast_times) {
     clearance_set clearance(samples.size());
     for (std::size_t m = 0; m < samples.size(); ++m) {
-      std::vector<double> d(times.size());
+      const auto at = [&](double t) { return clearance_at(ego, samples.maneuvers[m], obstacle, tau, t, window); };
       running_minimum r;
-      for (std::size_t k = 0; k < times.size(); ++k) {
-        const pose ego_pose = maneuver_pose(ego.pose, ego.speed, samples.maneuvers[m], times[k], window.horizon, ego.limits.speed_cap);
-        const placed_footprint e = place(ego.shape, ego_pose);
-        const placed_footprint o = place(obstacle.shape, forecast_pose(obstacle.motion, tau, times[k]));
-        d[k] = signed_distance(e, o) - window.margin;
-        r.update(d[k], k);
-      }
-      const double* values = d.data();
-      clearance[m] = refined_minimum(times, r.argmin, [values](std::size_t j) { return values[j]; }, rate, r.value);
+      for (std::size_t k = 0; k < times.size(); ++k) r.update(at(times[k]), k);
+      clearance[m] = refined_minimum(times, r.argmin, at, r.value);
     }
     result.push_back(std::move(clearance));
   }
@@ -174,13 +170,15 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
 std::vector<sample_mask> collision_sets_reference(const ego_state& ego, const maneuver_samples& samples,
                                                   const forecast_obstacle& obstacle,
                                                   std::span<const double> forecast_times,
-                                                  const collision_window& window) {
+                                                  const collision_window& window, double proof_resolution) {
   std::vector<sample_mask> sets;
   for (const double tau : forecast_times) {
     sample_mask set(samples.size());
     const std::array<double, 1> taus{tau};
     for (std::size_t m = 0; m < samples.size(); ++m) {
-      if (maneuver_collides(ego, samples.maneuvers[m], std::span(&obstacle, 1), taus, window)) set.set(m);
+      if (!verified_collision_free(ego, samples.maneuvers[m], std::span(&obstacle, 1), taus, window, proof_resolution)) {
+        set.set(m);
+      }
     }
     sets.push_back(std::move(set));
   }

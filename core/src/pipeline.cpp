@@ -124,7 +124,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     if (!options.reference && n > 0) sweep.emplace(ego, samples, window);
     for (std::size_t j = 0; j < n; ++j) {
       if (options.reference) {
-        for (const sample_mask& mask : collision_sets_reference(ego, samples, relevant[j], taus, window)) {
+        for (const sample_mask& mask : collision_sets_reference(ego, samples, relevant[j], taus, window, options.proof_resolution)) {
           clearance_set c(samples.size());
           for (std::size_t m = 0; m < c.size(); ++m) c[m] = mask.test(m) ? -1.0 : 1.0;
           clearance[j].push_back(std::move(c));

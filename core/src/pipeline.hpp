@@ -12,6 +12,7 @@ struct pipeline_options {
   /// Reference: brute-force collision tests, MI as the safe samples' share of the area.
   bool reference = false;
   assignment_search_kind assignment_search = assignment_search_kind::coordinate_ascent;
+  double proof_resolution = 1e-4;  ///< [s] of the reference's continuous-time collision test
 };
 
 /// Clearances are clamped to ±this [m] in the fast path: far pairs are skipped, and it is far above

@@ -5,7 +5,8 @@
 namespace mm {
 
 plan_result plan_reference(const plan_input& input, const reference_resolution& resolution) {
-  return detail::run_pipeline(input, {resolution.sampling, resolution.time_step, true, assignment_search_kind::exhaustive});
+  return detail::run_pipeline(input, {resolution.sampling, 0.01, true, assignment_search_kind::exhaustive,
+                                      resolution.proof_resolution});
 }
 
 }  // namespace mm

@@ -68,16 +68,17 @@ TEST(collision_sets, clearance_is_negative_for_every_sampled_collision_and_finds
     const prepared p = prepare(in, 0.05);
     const ego_sweep sweep(in.ego, p.samples, p.window);
     const auto fast = clearances(sweep, p.obstacles[0], taus, 2.0);
-    const auto sampled = collision_sets_reference(in.ego, p.samples, p.obstacles[0], taus, p.window);
     collision_window fine_window = p.window;
     fine_window.time_step = 0.005;
-    const auto fine = collision_sets_reference(in.ego, p.samples, p.obstacles[0], taus, fine_window);
+    const auto collides = [&](std::size_t m, double tau, const collision_window& window) {
+      return maneuver_collides(in.ego, p.samples.maneuvers[m], std::span(&p.obstacles[0], 1), std::vector<double>{tau}, window);
+    };
     for (std::size_t i = 0; i < taus.size(); ++i) {
       for (std::size_t m = 0; m < p.samples.size(); ++m) {
-        if (sampled[i].test(m)) {
+        if (collides(m, taus[i], p.window)) {
           ASSERT_LT(fast[i][m], 0.0) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
           ++colliding;
-        } else if (fine[i].test(m)) {
+        } else if (collides(m, taus[i], fine_window)) {
           ++fine_only;
           fine_only_found += fast[i][m] < 0.0 ? 1 : 0;
         }

@@ -97,7 +97,7 @@ double adjustable_margin(const plan_result& r) {
 
 TEST(planner_properties, fast_planner_agrees_with_the_reference_within_the_accuracy_bound) {
   std::mt19937_64 rng(testing::property_seed() + 9);
-  const std::size_t count = testing::property_count(6);
+  const std::size_t count = testing::property_count(20);
   std::size_t compared = 0;
   for (std::size_t trial = 0; trial < count; ++trial) {
     const plan_input in = testing::random_scene(rng, {1, trial % 2 == 1});

@@ -270,7 +270,7 @@ TEST(planner, constant_policy_uses_its_forecast_time_unless_it_exceeds_the_time_
 TEST(planner, recorded_samples_describe_the_sets_the_reference_indices_were_computed_from) {
   plan_input in = crossing_scene();
   in.config.record_samples = true;
-  const plan_result r = plan_reference(in, {{11, 15}, 0.02});
+  const plan_result r = plan_reference(in, {{11, 15}});
   ASSERT_TRUE(r.ok());
   ASSERT_TRUE(r.samples);
   const sample_snapshot& s = *r.samples;
@@ -303,22 +303,24 @@ TEST(planner, recorded_samples_of_the_fast_planner_are_those_of_the_reference_at
   in.config.resolution = {11, 15};
   in.config.max_time_step = 0.02;
   const plan_result fast = plan(in);
-  const plan_result reference = plan_reference(in, {{11, 15}, 0.02});
+  const plan_result reference = plan_reference(in, {{11, 15}});
   ASSERT_TRUE(fast.samples && reference.samples);
-  // Every sample the reference finds colliding collides for the fast planner too; the fast planner
-  // may also catch a contact between two sample times (it refines the clearance's minimum).
-  std::size_t extra = 0;
-  std::size_t total = 0;
+  // A sample the fast planner finds colliding really overlaps at some time, so the reference (exact
+  // in continuous time) finds it colliding too. The reverse can fail only for a contact the fast
+  // planner's time sampling misses entirely, which must be rare.
+  std::size_t missed = 0;
+  std::size_t colliding = 0;
   for (std::size_t i = 0; i < fast.forecast_times.size(); ++i) {
     for (std::size_t m = 0; m < fast.samples->maneuvers.size(); ++m) {
-      if (!reference.samples->safe_by_forecast[i][m]) {
-        EXPECT_FALSE(fast.samples->safe_by_forecast[i][m]);
+      if (!fast.samples->safe_by_forecast[i][m]) {
+        EXPECT_FALSE(reference.samples->safe_by_forecast[i][m]) << "tau index " << i << " sample " << m;
       }
-      extra += reference.samples->safe_by_forecast[i][m] && !fast.samples->safe_by_forecast[i][m] ? 1 : 0;
-      ++total;
+      colliding += reference.samples->safe_by_forecast[i][m] ? 0 : 1;
+      missed += !reference.samples->safe_by_forecast[i][m] && fast.samples->safe_by_forecast[i][m] ? 1 : 0;
     }
   }
-  EXPECT_LT(extra, total / 50);
+  EXPECT_GT(colliding, 100u);
+  EXPECT_LE(missed, colliding / 100);
   EXPECT_EQ(fast.samples->maneuvers, reference.samples->maneuvers);
   EXPECT_EQ(fast.samples->area_weights, reference.samples->area_weights);
   // The fast indices interpolate between the samples; the reference counts them.

@@ -3,7 +3,8 @@
 // family agree where the two best candidates differ by more than 0.02.
 //
 //   maneuvermap_accuracy [--scenes N] [--seed S] [--obstacles K] [--noise 0/1] [--fast AxC@DT,...]
-//                        [--ref-accelerations A] [--ref-curvatures C] [--ref-time-step DT] [--ref-engine fast|reference]
+//                        [--ref-accelerations A] [--ref-curvatures C] [--ref-proof-resolution S]
+//                        [--ref-engine fast|reference [--ref-time-step DT]]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -84,8 +85,10 @@ int main(int argc, char** argv) {
   std::vector<fast_setting> settings = parse_settings(text_argument(argc, argv, "--fast", "11x15@0.05"));
   mm::reference_resolution reference{
       {static_cast<std::size_t>(argument(argc, argv, "--ref-accelerations", 41)),
-       static_cast<std::size_t>(argument(argc, argv, "--ref-curvatures", 41))},
-      argument(argc, argv, "--ref-time-step", 0.005)};
+       static_cast<std::size_t>(argument(argc, argv, "--ref-curvatures", 121))},
+      argument(argc, argv, "--ref-proof-resolution", 1e-4)};
+  // With --ref-engine fast, the "reference" is the fast planner at the reference grid and this time step.
+  const double fast_reference_step = argument(argc, argv, "--ref-time-step", 0.005);
 
   // --ref-engine fast: compute the "reference" with the fast path at the reference resolution
   // (bit-identical to the reference engine at equal settings, and much cheaper): for convergence studies.
@@ -100,7 +103,7 @@ int main(int argc, char** argv) {
     if (fast_reference) {
       mm::plan_input fine = in;
       fine.config.resolution = reference.sampling;
-      fine.config.max_time_step = reference.time_step;
+      fine.config.max_time_step = fast_reference_step;
       r = mm::plan(fine);
     } else {
       r = mm::plan_reference(in, reference);
@@ -133,8 +136,9 @@ int main(int argc, char** argv) {
       }
     }
   }
-  std::printf("reference %zux%zu dt=%g: %zu scenes (%zu interacting), %zu obstacle(s), %.1f ms per scene\n",
-              reference.sampling.accelerations, reference.sampling.curvatures, reference.time_step, scenes,
+  std::printf("reference %s %zux%zu: %zu scenes (%zu interacting), %zu obstacle(s), %.1f ms per scene\n",
+              fast_reference ? "(fast engine)" : "(reference engine)", reference.sampling.accelerations,
+              reference.sampling.curvatures, scenes,
               interacting, options.obstacles, 1e3 * reference_seconds / static_cast<double>(scenes));
   std::printf("%-16s %9s %9s %9s %14s %12s\n", "fast", "max|dMI|", "p95", "median", "disagreements", "ms/scene");
   for (fast_setting& setting : settings) {

@@ -67,42 +67,43 @@ struct running_minimum {
   }
 };
 
-/// Estimate of the continuous-time minimum of a signed clearance sampled at `times`, given the
-/// argmin `k` of its samples (`running_minimum`), `value(j)` giving the sample at index j.
-/// The clearance of a corner passing a corner has a kink at its minimum, which sampling misses by
-/// up to rate·Δt/2; so take the lowest of `sampled_minimum`, the vertex of the parabola through
-/// k−1, k, k+1 (when convex) and the crossing of the lines through k−2, k−1 and k+1, k+2 (when
-/// they fall and rise), but no lower than the sampled minimum minus `rate` [m/s] times half the
-/// longer neighbouring step (the clearance changes no faster than `rate`). At the window's ends,
-/// the sampled minimum. Measured: at a 0.05 s step this halves the error of the indices.
-template <class Value>
-double refined_minimum(std::span<const double> times, std::size_t k, Value&& value, double rate, double sampled_minimum) {
-  const double at_k = value(k);
+/// The continuous-time minimum of a signed clearance sampled at `times`, refined around the argmin
+/// `k` of its samples (`running_minimum`): a golden-section search for the minimum of `at(t)`
+/// [m] on [t_{k−1}, t_{k+1}], `iterations` times shrinking the bracket by 0.618. The result is
+/// the smallest value seen, so it never lies below the true minimum and never above
+/// `sampled_minimum`. At the window's ends, `sampled_minimum`. Sampling misses up to
+/// (relative speed × step / 2) where a corner passes a corner; with 12 iterations on a 0.05 s
+/// step the remaining error is below 0.3 ms of relative motion.
+template <class At>
+double refined_minimum(std::span<const double> times, std::size_t k, At&& at, double sampled_minimum,
+                       int iterations = 12) {
   if (k == 0 || k + 1 >= times.size()) return sampled_minimum;
-  const double before = value(k - 1);
-  const double after = value(k + 1);
-  const double h0 = times[k] - times[k - 1];
-  const double h1 = times[k + 1] - times[k];
-  double estimate = sampled_minimum;
-  // Parabola through the three samples: its vertex value.
-  const double slope0 = (at_k - before) / h0;
-  const double slope1 = (after - at_k) / h1;
-  const double curvature = (slope1 - slope0) / (h0 + h1);  // half the second derivative
-  if (curvature > 0.0) {
-    const double slope_at_k = slope0 + curvature * h0;  // derivative of the parabola at t_k
-    estimate = std::min(estimate, at_k - slope_at_k * slope_at_k / (4.0 * curvature));
-  }
-  // "V": the lines through the two samples before and the two samples after.
-  if (k >= 2 && k + 2 < times.size()) {
-    const double left = (before - value(k - 2)) / (times[k - 1] - times[k - 2]);
-    const double right = (value(k + 2) - after) / (times[k + 2] - times[k + 1]);
-    if (left < 0.0 && right > 0.0) {
-      // before + left·(x − t_{k−1}) = after + right·(x − t_{k+1})
-      const double x = (after - before - right * times[k + 1] + left * times[k - 1]) / (left - right);
-      if (x > times[k - 1] && x < times[k + 1]) estimate = std::min(estimate, before + left * (x - times[k - 1]));
+  constexpr double shrink = 0.6180339887498949;  // (√5 − 1)/2
+  double lo = times[k - 1];
+  double hi = times[k + 1];
+  double x1 = hi - shrink * (hi - lo);
+  double x2 = lo + shrink * (hi - lo);
+  double f1 = at(x1);
+  double f2 = at(x2);
+  double best = std::min({sampled_minimum, f1, f2});
+  for (int i = 0; i < iterations; ++i) {
+    if (f1 <= f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - shrink * (hi - lo);
+      f1 = at(x1);
+      best = std::min(best, f1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + shrink * (hi - lo);
+      f2 = at(x2);
+      best = std::min(best, f2);
     }
   }
-  return std::max(estimate, sampled_minimum - rate * std::max(h0, h1) / 2.0);
+  return best;
 }
 
 /// True when the ego executing `u` provably keeps more than the margin from every obstacle

@@ -9,6 +9,11 @@
 
 namespace mm {
 
+/// Signed distance − margin [m] between the ego executing `u` and the obstacle forecast with
+/// forecast time `tau`, at time t.
+double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle, double tau, double t,
+                    const collision_window& window);
+
 /// Signed clearance of every sample: the smallest signed distance − margin [m] between the ego
 /// executing the sample and an obstacle over the collision window. Negative ⇔ the sample collides
 /// [CSS]; the magnitude lets estimators place the boundary between samples. Clamped to ±cap.
@@ -21,6 +26,7 @@ class ego_sweep {
   ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window);
 
   const ego_state& ego() const { return ego_; }
+  const maneuver_samples& samples() const { return samples_; }
   const collision_window& window() const { return window_; }
   std::size_t sample_count() const { return sample_count_; }
   const std::vector<double>& times() const { return times_; }
@@ -39,6 +45,7 @@ class ego_sweep {
 
  private:
   ego_state ego_;
+  const maneuver_samples& samples_;
   collision_window window_;
   std::size_t sample_count_;
   std::vector<double> times_;
@@ -75,11 +82,13 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
                                                 std::span<const double> forecast_times,
                                                 const collision_window& window);
 
-/// Collision sets [CSS](τ_i) by brute force (the reference planner's, spec §11): mask i holds the
-/// samples for which `maneuver_collides` with the obstacle forecast with `forecast_times[i]`.
+/// Collision sets [CSS](τ_i) of the reference planner (spec §11), in continuous time: mask i holds
+/// the samples that `verified_collision_free` cannot prove free of the obstacle forecast with
+/// `forecast_times[i]` at any time in [0, T_c] — they overlap, or pass within (largest relative
+/// point speed × `proof_resolution`) of it.
 std::vector<sample_mask> collision_sets_reference(const ego_state& ego, const maneuver_samples& samples,
                                                   const forecast_obstacle& obstacle,
                                                   std::span<const double> forecast_times,
-                                                  const collision_window& window);
+                                                  const collision_window& window, double proof_resolution);
 
 }  // namespace mm

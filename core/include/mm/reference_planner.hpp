@@ -6,14 +6,17 @@ namespace mm {
 
 /// Resolution of the reference planner.
 struct reference_resolution {
-  sampling_resolution sampling{41, 41};  ///< dense (a, κ) grid per family
-  double time_step = 0.005;              ///< fine collision time step [s]
+  sampling_resolution sampling{41, 121};  ///< dense (a, κ) grid per family
+  /// Time resolution of the continuous-time collision proof [s]: a sample passing within
+  /// (largest relative point speed × this) of an obstacle, ≈ 2.5 mm, counts as colliding.
+  double proof_resolution = 1e-4;
 };
 
-/// The slow, obviously-correct reference of `plan` (spec §11): a dense grid, a fine time step,
-/// every (sample, forecast time, obstacle, time) pair tested exactly with no pruning or sharing,
-/// and the exhaustive forecast-time search for several obstacles. `input.config.resolution`,
-/// `max_time_step` and `assignment_search` are ignored.
+/// The slow, obviously-correct reference of `plan` (spec §11): a dense grid of maneuvers, each
+/// tested on its own against each obstacle and forecast time for the whole window in continuous
+/// time (`verified_collision_free`: conservative advancement, exact up to `proof_resolution`),
+/// MI as the safe samples' share of the area, and the exhaustive forecast-time search for several
+/// obstacles. `input.config.resolution`, `max_time_step` and `assignment_search` are ignored.
 plan_result plan_reference(const plan_input& input, const reference_resolution& resolution = {});
 
 }  // namespace mm
