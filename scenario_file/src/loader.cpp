@@ -80,12 +80,6 @@ struct agent_entry {
   std::size_t index = 0;  ///< within its kind's list
 };
 
-std::string number_text(double value) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, r.ptr);
-}
-
 class mapper {
  public:
   mapper(std::string source, const YAML::Node& root, const load_options& options)
@@ -432,9 +426,7 @@ class mapper {
         }
       }
     } else {
-      m.speed = mm::sim::speed_profile::constant(
-          read_number(ctx_, *speed, speed->key == "speed_kmh" ? "km/h" : "m/s", range::non_negative) *
-          (speed->key == "speed_kmh" ? 1.0 / 3.6 : 1.0));
+      m.speed = mm::sim::speed_profile::constant(*v.quantity("speed", speed_units, range::non_negative));
     }
     if (v.has("stop")) {
       const map_view s = v.child("stop");

@@ -97,9 +97,7 @@ std::string shown(const context& ctx, const YAML::Node& node) {
   const std::string& text = node.Scalar();
   if (!text.empty() && text[0] == '$') {
     if (const parameter* p = ctx.find_parameter(std::string_view(text).substr(1))) {
-      char buffer[64];
-      const auto r = std::to_chars(buffer, buffer + sizeof buffer, p->value);
-      return text + " (= " + std::string(buffer, r.ptr) + ")";
+      return text + " (= " + number_text(p->value) + ")";
     }
   }
   std::string out = text.size() > 60 ? text.substr(0, 57) + "..." : text;
@@ -293,19 +291,15 @@ map_view map_view::child(std::string_view key) const {
   return map_view(*ctx_, std::move(layers));
 }
 
-std::optional<field> map_view::one_of(std::initializer_list<std::string_view> keys) const {
+std::optional<field> map_view::one_of(const std::vector<std::string>& keys) const {
   for (const field& layer : layers_) {
     if (!layer.node.IsDefined()) continue;
     std::optional<field> found;
-    for (std::string_view key : keys) {
-      for (const auto& entry : layer.node) {
-        if (!entry.first.IsScalar() || entry.first.Scalar() != key) continue;
-        const field f{entry.second, join(layer.path, key), std::string(key)};
-        if (found) {
-          ctx_->fail(entry.first, f.path, "give either " + found->key + " or " + f.key + ", not both");
-        }
-        found = f;
-      }
+    for (const auto& entry : layer.node) {
+      if (!entry.first.IsScalar() || std::find(keys.begin(), keys.end(), entry.first.Scalar()) == keys.end()) continue;
+      const field f{entry.second, join(layer.path, entry.first.Scalar()), entry.first.Scalar()};
+      if (found) ctx_->fail(entry.first, f.path, "give either " + found->key + " or " + f.key + ", not both");
+      found = f;
     }
     if (found) return found;
   }
@@ -313,24 +307,14 @@ std::optional<field> map_view::one_of(std::initializer_list<std::string_view> ke
 }
 
 std::optional<double> map_view::quantity(std::string_view base, units alternatives, range r) const {
-  std::vector<std::string> keys = keys_of(base, alternatives);
-  for (const field& layer : layers_) {
-    if (!layer.node.IsDefined()) continue;
-    std::optional<field> found;
-    const unit* found_unit = nullptr;
-    for (const unit& u : alternatives) {
-      const std::string key = std::string(base) + std::string(u.suffix);
-      for (const auto& entry : layer.node) {
-        if (!entry.first.IsScalar() || entry.first.Scalar() != key) continue;
-        const field f{entry.second, join(layer.path, key), key};
-        if (found) ctx_->fail(entry.first, f.path, "give either " + found->key + " or " + key + ", not both");
-        found = f;
-        found_unit = &u;
-      }
+  const std::optional<field> found = one_of(keys_of(base, alternatives));
+  if (!found) return std::nullopt;
+  for (const unit& u : alternatives) {
+    if (found->key.size() == base.size() + u.suffix.size() && found->key.ends_with(u.suffix)) {
+      return read_number(*ctx_, *found, u.label, r) * u.to_si;
     }
-    if (found) return read_number(*ctx_, *found, found_unit->label, r) * found_unit->to_si;
   }
-  return std::nullopt;
+  return std::nullopt;  // unreachable: one_of only returns one of the keys
 }
 
 double map_view::quantity_or(std::string_view base, units alternatives, double fallback, range r) const {
@@ -343,6 +327,12 @@ double map_view::required_quantity(std::string_view base, units alternatives, ra
   std::string names;
   for (const std::string& k : keys) names += (names.empty() ? "" : " or ") + k;
   ctx_->fail(anchor_, self().path.empty() ? std::string(base) : self().path, "missing required field " + names);
+}
+
+std::string number_text(double value) {
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, value);
+  return std::string(buffer, r.ptr);
 }
 
 std::vector<std::string> keys_of(std::string_view base, units alternatives) {

@@ -120,7 +120,7 @@ class map_view {
   double required_quantity(std::string_view base, units alternatives, range r = range::any) const;
 
   /// Which of `keys` (mutually exclusive) is given in the most specific layer that has one; none.
-  std::optional<field> one_of(std::initializer_list<std::string_view> keys) const;
+  std::optional<field> one_of(const std::vector<std::string>& keys) const;
 
   const context& ctx() const { return *ctx_; }
 
@@ -129,6 +129,9 @@ class map_view {
   std::vector<field> layers_;
   YAML::Node anchor_;  ///< where "missing" errors point: the first layer, or the parent of an absent map
 };
+
+/// The shortest decimal text that reads back as `value` ("0.5", "40").
+std::string number_text(double value);
 
 /// Every key `base` + suffix for `alternatives`, for `allow` lists.
 std::vector<std::string> keys_of(std::string_view base, units alternatives);
