@@ -1,0 +1,102 @@
+// maneuvermap_bench: the planner on fixed inputs captured from the built-in scenarios, the
+// reference planner on the one-obstacle input, and one whole S3 run (docs/performance.md).
+//
+//   build/release/benchmarks/maneuvermap_bench [Google Benchmark flags]
+//
+// Each case runs several repetitions and reports their median and their maximum; `worst_us`
+// is the slowest single call seen in a repetition.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "captured_inputs.hpp"
+#include "mm/reference_planner.hpp"
+#include "mm/scenario_file/loader.hpp"
+#include "mm/sim/simulation.hpp"
+
+namespace {
+
+double largest(const std::vector<double>& v) { return v.empty() ? 0.0 : *std::max_element(v.begin(), v.end()); }
+
+/// The captured input of `interacting` obstacles, replayed once per process.
+const mm::plan_input& input_with(std::size_t interacting) {
+  static std::map<std::size_t, mm::plan_input> cache;
+  auto it = cache.find(interacting);
+  if (it == cache.end()) it = cache.emplace(interacting, mm::capture::replay(mm::bench::captured(interacting).point)).first;
+  return it->second;
+}
+
+/// Runs `call` once per iteration, timing each call; reports the slowest as `worst_us`.
+template <class Call>
+void timed_loop(benchmark::State& state, Call&& call) {
+  double worst = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    benchmark::DoNotOptimize(call());
+    const auto stop = std::chrono::steady_clock::now();
+    worst = std::max(worst, std::chrono::duration<double, std::micro>(stop - start).count());
+  }
+  state.counters["worst_us"] = worst;
+}
+
+void plan_case(benchmark::State& state) {
+  const mm::plan_input& in = input_with(static_cast<std::size_t>(state.range(0)));
+  timed_loop(state, [&] { return mm::plan(in); });
+}
+
+void plan_reference_case(benchmark::State& state) {
+  const mm::plan_input& in = input_with(static_cast<std::size_t>(state.range(0)));
+  timed_loop(state, [&] { return mm::plan_reference(in); });
+}
+
+/// One cell of the paper's Table 1: a whole S3 run, loaded from the scenario file.
+void table1_cell(benchmark::State& state) {
+  const mm::scenario_file::loaded_scenario loaded =
+      mm::scenario_file::load_file(std::string(MM_SOURCE_DIR) + "/scenarios/s3-left-turn.yaml");
+  timed_loop(state, [&] {
+    mm::sim::simulation sim(loaded.scenario);
+    mm::sim::run(sim);
+    return sim.time();
+  });
+}
+
+void register_all() {
+  for (const mm::bench::captured_input& c : mm::bench::captured_inputs()) {
+    benchmark::RegisterBenchmark("plan", plan_case)
+        ->ArgName("obstacles")
+        ->Arg(static_cast<long>(c.interacting))
+        ->Unit(benchmark::kMicrosecond)
+        ->Repetitions(5)
+        ->ComputeStatistics("max", largest)
+        ->ReportAggregatesOnly(true);
+  }
+  benchmark::RegisterBenchmark("plan_reference", plan_reference_case)
+      ->ArgName("obstacles")
+      ->Arg(1)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1)
+      ->Repetitions(3)
+      ->ComputeStatistics("max", largest)
+      ->ReportAggregatesOnly(true);
+  benchmark::RegisterBenchmark("sim/table1_cell", table1_cell)
+      ->Unit(benchmark::kMillisecond)
+      ->Iterations(1)
+      ->Repetitions(3)
+      ->ComputeStatistics("max", largest)
+      ->ReportAggregatesOnly(true);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  register_all();
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

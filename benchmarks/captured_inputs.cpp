@@ -1,0 +1,24 @@
+#include "captured_inputs.hpp"
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace mm::bench {
+
+std::span<const captured_input> captured_inputs() {
+  static const std::vector<captured_input> inputs{
+      {"obstacles:0", 0, {"s3-left-turn", {}, "A", 1.0}, "S3 before B comes within reach"},
+      {"obstacles:1", 1, {"s3-left-turn", {}, "A", 4.80}, "S3, least room of the run (B turning across A)"},
+  };
+  return inputs;
+}
+
+const captured_input& captured(std::size_t interacting) {
+  for (const captured_input& c : captured_inputs()) {
+    if (c.interacting == interacting) return c;
+  }
+  throw std::out_of_range("no captured input with " + std::to_string(interacting) + " interacting obstacles");
+}
+
+}  // namespace mm::bench

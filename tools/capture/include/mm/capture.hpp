@@ -1,0 +1,39 @@
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "mm/planner.hpp"
+
+namespace mm::capture {
+
+/// How many obstacles of a planning input matter.
+struct interaction_count {
+  std::size_t relevant = 0;     ///< kept by the planner: can reach some maneuver within T_c (spec §9)
+  std::size_t interacting = 0;  ///< planned alone, it takes room from the ego under some forecast time
+};
+
+/// Counts the relevant and the interacting obstacles of `input` (one extra plan per relevant obstacle).
+interaction_count count_interactions(const plan_input& input);
+
+/// Smallest room max(MI−, MI+) over the forecast times of a plan.
+double smallest_room(const plan_result& result);
+
+/// A planning step taken from a scenario: the scenario (built-in name or file), its parameter
+/// overrides, the planning vehicle and the time at which its input is taken.
+struct capture_point {
+  std::string scenario;
+  std::vector<std::pair<std::string, double>> overrides;
+  std::string agent;
+  double time = 0.0;  ///< [s], a multiple of the scenario's time step
+};
+
+/// Runs the scenario from its start to `point.time` (the first instant at or after it) and returns
+/// what `point.agent` plans on then (`simulation::planning_input`). Deterministic. Throws
+/// std::runtime_error when the agent does not exist or is not in the world at that time.
+plan_input replay(const capture_point& point);
+
+}  // namespace mm::capture
