@@ -10,6 +10,8 @@
 #include <ostream>
 #include <variant>
 
+#include "mm/forecast.hpp"
+#include "mm/maneuver.hpp"
 #include "mm/sim/roundabout.hpp"
 #include "mm/sim/simulation.hpp"
 
@@ -356,11 +358,13 @@ snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::
                       std::string(mm::sim::to_string(sim.state(*id).status)) + ")");
   }
   snapshot shot;
+  shot.agent = agent;
   shot.time = sim.time();
   shot.input = *sim.planning_input(*id);
   shot.input.config.record_samples = true;
   shot.result = mm::plan(shot.input);
   if (!shot.result.ok() || !shot.result.samples) throw std::runtime_error("re-planning failed: " + shot.result.error);
+  for (const mm::obstacle_track& track : shot.input.obstacles) shot.obstacle_names.push_back(sim.info(track.id).name);
   const std::vector<double>& taus = shot.result.forecast_times;
   std::vector<std::size_t> selected;
   for (std::size_t i = 0; i < taus.size(); ++i) {
@@ -389,6 +393,74 @@ void write_snapshot_csv(std::ostream& out, const snapshot& shot) {
                    fixed(r.area_weight), r.safe ? 1 : 0);
   }
   out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
+}
+
+std::filesystem::path snapshot_json_path(const std::filesystem::path& csv) {
+  std::filesystem::path json_file = csv;
+  if (json_file.extension() == ".json") return json_file += ".json";  // never the CSV itself
+  return json_file.replace_extension(".json");
+}
+
+void write_snapshot_json(std::ostream& out, const snapshot& shot, const scenario_file::loaded_scenario& loaded) {
+  const mm::plan_input& in = shot.input;
+  const mm::plan_result& r = shot.result;
+  const double horizon = in.config.displacement_horizon;
+  const auto displacement = [&](const mm::maneuver& u) {
+    const mm::pose end = mm::maneuver_pose(in.ego.pose, in.ego.speed, u, horizon, horizon, in.ego.limits.speed_cap);
+    return json{{"accel_mps2", rounded(u.acceleration)}, {"curvature_per_m", rounded(u.curvature)}, {"end_m", point(end.position)}};
+  };
+  const auto index_of = [&](double tau) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+      if (std::abs(r.forecast_times[i] - tau) < std::abs(r.forecast_times[best] - tau)) best = i;
+    }
+    return best;
+  };
+  json obstacles = json::array();
+  for (std::size_t k = 0; k < in.obstacles.size() && k < r.obstacles.size(); ++k) {
+    const mm::obstacle_assessment& a = r.obstacles[k];
+    const double tau = a.forecast_index < r.forecast_times.size() ? r.forecast_times[a.forecast_index] : r.forecast_time;
+    json forecast = json::array();
+    constexpr int samples = 30;
+    for (int i = 0; i <= samples; ++i) {
+      const double t = in.config.collision_window * i / samples;
+      forecast.push_back(point(mm::forecast_pose(a.motion, tau, t).position));
+    }
+    obstacles.push_back({{"name", k < shot.obstacle_names.size() ? shot.obstacle_names[k] : std::to_string(a.id)},
+                         {"footprint", footprint_json(in.obstacles[k].shape)},
+                         {"relevant", a.relevant},
+                         {"position_m", point(a.motion.pose.position)},
+                         {"heading_rad", rounded(a.motion.pose.heading)},
+                         {"speed_mps", rounded(a.motion.speed)},
+                         {"yaw_rate_per_s", rounded(a.motion.yaw_rate)},
+                         {"ttc_s", optional_number(a.time_to_collision)},
+                         {"tau_s", rounded(tau)},
+                         {"forecast_m", forecast}});
+  }
+  const std::size_t bar = index_of(r.forecast_time);
+  const json doc = {
+      {"format", "maneuvermap-snapshot/1"},
+      {"scenario", loaded.scenario.name},
+      {"policy", scenario_file::policy_name(in.config.policy)},
+      {"seed", loaded.scenario.seed},
+      {"agent", shot.agent},
+      {"time_s", rounded(shot.time)},
+      {"ego", {{"position_m", point(in.ego.pose.position)},
+               {"heading_rad", rounded(in.ego.pose.heading)},
+               {"speed_mps", rounded(in.ego.speed)},
+               {"footprint", footprint_json(in.ego.shape)}}},
+      {"displacement_horizon_s", rounded(horizon)},
+      {"collision_window_s", rounded(in.config.collision_window)},
+      {"tau_bar_s", rounded(r.forecast_time)},
+      {"family", std::string(mm::to_string(r.selected_family))},
+      {"mode", std::string(mm::to_string(r.mode))},
+      {"ttc_s", optional_number(r.time_to_collision)},
+      {"mi_brake_at_tau_bar", r.mi_brake.empty() ? json(nullptr) : json(rounded(r.mi_brake[bar]))},
+      {"mi_accel_at_tau_bar", r.mi_accelerate.empty() ? json(nullptr) : json(rounded(r.mi_accelerate[bar]))},
+      {"nominal", displacement(in.nominal)},
+      {"chosen", displacement(r.command)},
+      {"obstacles", obstacles}};
+  out << doc.dump(2) << "\n";
 }
 
 }  // namespace mm::cli

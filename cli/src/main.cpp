@@ -5,11 +5,14 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 
 #include "mm/cli/commands.hpp"
+#include "mm/cli/plot.hpp"
+#include "mm/cli/sweep.hpp"
 #include "mm/scenario_file/builtin.hpp"
 
 namespace {
@@ -62,9 +65,16 @@ std::string first_line(std::string_view text) {
 int list_command() {
   std::size_t width = 0;
   for (const sf::builtin_scenario& b : sf::builtin_scenarios()) width = std::max(width, b.name.size());
+  for (const mm::cli::builtin_sweep& b : mm::cli::builtin_sweeps()) width = std::max(width, b.name.size());
+  std::cout << "built-in scenarios (maneuvermap run NAME):\n";
   for (const sf::builtin_scenario& b : sf::builtin_scenarios()) {
     const sf::loaded_scenario loaded = sf::load_text(b.text, "builtin:" + std::string(b.name));
-    std::cout << fmt::format("{:<{}}  {}\n", b.name, width, first_line(loaded.scenario.description));
+    std::cout << fmt::format("  {:<{}}  {}\n", b.name, width, first_line(loaded.scenario.description));
+  }
+  std::cout << "\nbuilt-in sweeps (maneuvermap sweep NAME):\n";
+  for (const mm::cli::builtin_sweep& b : mm::cli::builtin_sweeps()) {
+    const mm::cli::sweep_spec spec = mm::cli::load_sweep_text(b.text, "builtin:" + std::string(b.name), ".");
+    std::cout << fmt::format("  {:<{}}  {}\n", b.name, width, first_line(spec.description));
   }
   return exit_ok;
 }
@@ -86,7 +96,10 @@ int validate_command(const scenario_options& o) {
   return exit_ok;
 }
 
-int run_command(const scenario_options& o, const std::string& out, bool timing) {
+/// `--plots`: the figures of `dir` into `dir` (failures are reported as by `maneuvermap plot`).
+void plot_into(const std::filesystem::path& dir) { mm::cli::draw_plots(dir, {}); }
+
+int run_command(const scenario_options& o, const std::string& out, bool timing, bool plots) {
   const sf::loaded_scenario loaded = load(o);
   mm::cli::run_settings settings;
   settings.out_dir = out.empty() ? std::filesystem::path("out") / loaded.scenario.name : std::filesystem::path(out);
@@ -98,6 +111,46 @@ int run_command(const scenario_options& o, const std::string& out, bool timing) 
                            mm::cli::fixed(outcome.end_time, 2));
   std::cout << mm::cli::metrics_table(outcome.metrics, timing);
   std::cout << "written to " << settings.out_dir.string() << "/\n";
+  if (plots) plot_into(settings.out_dir);
+  return exit_ok;
+}
+
+struct sweep_options {
+  std::string file;
+  unsigned jobs = 0;
+  std::string out;
+  bool plots = false;
+  bool keep_runs = false;
+  std::optional<std::size_t> repetitions;
+};
+
+int sweep_command(const sweep_options& o) {
+  mm::cli::sweep_spec spec = mm::cli::load_sweep(o.file);
+  if (o.keep_runs) spec.keep_runs = true;
+  if (o.repetitions) spec.repetitions = *o.repetitions;
+  mm::cli::sweep_settings settings;
+  settings.out_dir = o.out.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(o.out);
+  settings.jobs = o.jobs;
+  settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
+  const auto started = std::chrono::steady_clock::now();
+  const mm::cli::sweep_outcome outcome = mm::cli::run_sweep(spec, settings);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+  std::cout << mm::cli::table_markdown(spec, outcome.results) << "\n";
+  for (const mm::cli::sweep_result& r : outcome.results) {
+    if (r.error.empty()) continue;
+    std::cerr << fmt::format("maneuvermap: run {} failed: {}\n  rerun it alone: {}\n", r.run.index, r.error,
+                             mm::cli::run_command_line(spec, r.run));
+  }
+  std::cout << fmt::format("{}: {} runs, {} failed, in {} s; written to {}/\n", spec.name, outcome.results.size(),
+                           outcome.failed, mm::cli::fixed(seconds, 1), settings.out_dir.string());
+  if (o.plots) plot_into(settings.out_dir);
+  return outcome.failed == 0 ? exit_ok : exit_internal;
+}
+
+int plot_command(const std::string& target, const std::string& out) {
+  std::error_code ec;
+  if (!std::filesystem::exists(target, ec)) throw mm::cli::input_error("plot: " + target + ": no such file or directory");
+  mm::cli::draw_plots(target, out);
   return exit_ok;
 }
 
@@ -116,6 +169,11 @@ int snapshot_command(const scenario_options& o, double time, const std::string& 
   mm::cli::write_snapshot_csv(file, shot);
   file.close();
   if (!file) throw std::runtime_error("cannot write " + out);
+  const std::filesystem::path json_file = mm::cli::snapshot_json_path(out);
+  std::ofstream sidecar(json_file, std::ios::binary);
+  mm::cli::write_snapshot_json(sidecar, shot, loaded);
+  sidecar.close();
+  if (!sidecar) throw std::runtime_error("cannot write " + json_file.string());
   return exit_ok;
 }
 
@@ -139,6 +197,30 @@ int main(int argc, char** argv) {
   add_scenario_options(*run, run_options, true);
   run->add_option("--out", run_out, "Output directory (default out/<scenario name>)")->type_name("DIR");
   run->add_flag("--timing", timing, "Measure the CPU time of each planning step (outputs are then not reproducible)");
+  bool run_plots = false;
+  run->add_flag("--plots", run_plots, "Then draw the run's figures into its output directory (maneuvermap plot)");
+
+  sweep_options sweep_opts;
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "Run a parameter sweep (grid of parameters x policies x seeded repetitions) in parallel; write runs.csv, table.csv, table.md");
+  sweep->add_option("FILE", sweep_opts.file, "Sweep file, or the name of a built-in sweep (maneuvermap list)")->required();
+  sweep->add_option("--jobs,-j", sweep_opts.jobs, "Runs in parallel (default: the number of cores)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("N");
+  sweep->add_option("--out", sweep_opts.out, "Output directory (default out/<sweep name>)")->type_name("DIR");
+  sweep->add_flag("--keep-runs", sweep_opts.keep_runs, "Also write every run's own output directory under DIR/runs/");
+  sweep->add_option("--repetitions", sweep_opts.repetitions, "Replace the sweep file's repetitions (e.g. 1 for a preview)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->type_name("N");
+  sweep->add_flag("--plots", sweep_opts.plots, "Then draw the sweep's figures into DIR (maneuvermap plot)");
+
+  std::string plot_target;
+  std::string plot_out;
+  CLI::App* plot = app.add_subcommand(
+      "plot", "Draw the figures (PNG and SVG) of a run directory, a sweep directory or a snapshot CSV with matplotlib");
+  plot->add_option("TARGET", plot_target, "A run directory, a sweep directory or a snapshot CSV")->required()->type_name("RUN_OR_SWEEP_DIR");
+  plot->add_option("--out", plot_out, "Where to write the figures (default: the directory itself, or the CSV's directory)")
+      ->type_name("DIR");
 
   scenario_options snapshot_options;
   double snapshot_time = 0.0;
@@ -164,7 +246,9 @@ int main(int argc, char** argv) {
   try {
     if (list->parsed()) return list_command();
     if (validate->parsed()) return validate_command(validate_options);
-    if (run->parsed()) return run_command(run_options, run_out, timing);
+    if (run->parsed()) return run_command(run_options, run_out, timing, run_plots);
+    if (sweep->parsed()) return sweep_command(sweep_opts);
+    if (plot->parsed()) return plot_command(plot_target, plot_out);
     if (snapshot->parsed()) return snapshot_command(snapshot_options, snapshot_time, snapshot_agent, snapshot_tau, snapshot_out);
   } catch (const sf::scenario_error& e) {
     std::cerr << "maneuvermap: " << e.what() << "\n";

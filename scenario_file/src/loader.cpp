@@ -776,6 +776,10 @@ std::string policy_name(const mm::forecast_policy& policy) {
   return "const:" + number_text(policy.constant_forecast_time);
 }
 
+std::string closest_name(std::string_view word, const std::vector<std::string>& candidates) {
+  return closest(word, candidates);
+}
+
 std::optional<std::pair<std::string, double>> parse_override(std::string_view text) {
   const std::size_t eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0) return std::nullopt;

@@ -59,6 +59,8 @@ struct snapshot_row {
 
 /// A re-plan of one planning vehicle with the samples recorded (`maneuvermap snapshot`).
 struct snapshot {
+  std::string agent;            ///< the re-planned planning vehicle
+  std::vector<std::string> obstacle_names;  ///< the agent behind each of input.obstacles
   double time = 0.0;            ///< the simulation time at which it was taken [s]
   mm::plan_input input;         ///< what the vehicle planned on (config.record_samples = true)
   mm::plan_result result;       ///< with `samples`
@@ -75,6 +77,15 @@ snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::
 
 /// Writes `rows` as CSV `tau,family,accel,curvature,end_x,end_y,area_weight,safe`.
 void write_snapshot_csv(std::ostream& out, const snapshot& shot);
+
+/// Writes what the CSV's rows do not repeat, as one JSON object `maneuvermap-snapshot/1`: the
+/// time, the ego's pose, speed and footprint, T_h, τ̄, the family, mode and TTC, the nominal and
+/// the chosen maneuver with their displacements, and each obstacle's estimated motion and its
+/// forecast at its forecast time (docs/outputs.md). `loaded` names the scenario, policy and seed.
+void write_snapshot_json(std::ostream& out, const snapshot& shot, const scenario_file::loaded_scenario& loaded);
+
+/// Where `maneuvermap snapshot --out FILE.csv` writes the JSON: FILE.json.
+std::filesystem::path snapshot_json_path(const std::filesystem::path& csv);
 
 /// A finite value with 6 decimals ("-0.000000" written as "0.000000"); "" when not finite.
 std::string fixed(double value, int decimals = 6);

@@ -118,6 +118,10 @@ std::optional<mm::forecast_policy> parse_policy(std::string_view text);
 /// `adj` or `const:SECONDS` with the shortest decimal form of the forecast time (`const:0.5`).
 std::string policy_name(const mm::forecast_policy& policy);
 
+/// The closest of `candidates` to `word` when it is a plausible typo of it, else "" (the "did you
+/// mean ...?" of messages; also used by the sweep files of the command line).
+std::string closest_name(std::string_view word, const std::vector<std::string>& candidates);
+
 /// Parses `NAME=VALUE` of `--set`; none if malformed (no '=', empty name, VALUE not a finite number).
 std::optional<std::pair<std::string, double>> parse_override(std::string_view text);
 
