@@ -612,7 +612,7 @@ def plot_table1(sweep, rows, paper_rows, out_dir, written):
                     sides = [r["bypass"] for r in group]
                     side = max(("left", "right", "none"), key=sides.count)
                     ax.annotate(side[0].upper(), (x, -0.26), ha="center", va="center", fontsize=7,
-                                color=policy_colour(policy), fontweight="bold")
+                                color="black", fontweight="bold")
                 ref = paper.get((a, b, paper_policy(policy)))
                 if ref is not None:
                     value = float(ref["min_dist_m"] or 0)
@@ -641,7 +641,7 @@ def plot_table1(sweep, rows, paper_rows, out_dir, written):
     ]
     fig.legend(handles=handles, loc="lower center", ncol=4, frameon=False, bbox_to_anchor=(0.5, -0.07))
     n = sweep["repetitions"]
-    fig.suptitle(f"Table 1 (S3 left turn): minimum distance of A per cell and policy — ours: mean ± sd over {n} "
+    fig.suptitle(f"Table 1 ({sweep['scenario']}): minimum distance of A per cell and policy — ours: mean ± sd over {n} "
                  f"repetition{'s' if n != 1 else ''}; letters: bypass side (L/R, ours majority)", fontsize=10)
     fig.tight_layout()
     save(fig, out_dir, "table1-comparison", written)
@@ -654,7 +654,10 @@ def plot_sweep(directory, out_dir, paper_table1, written):
         raise BadInput(f"{directory}/runs.csv has no runs")
     plot_min_dist(sweep, rows, out_dir, written)
     params = list(sweep["parameters"].keys())
-    if sorted(params) == ["a_kmh", "b_kmh"] and paper_table1 and os.path.isfile(paper_table1):
+    # Table 1's layout: A's and B's speeds swept (any other parameter held at one value).
+    table1_shaped = {"a_kmh", "b_kmh"} <= set(params) and all(
+        len(v) == 1 for p, v in sweep["parameters"].items() if p not in ("a_kmh", "b_kmh"))
+    if table1_shaped and paper_table1 and os.path.isfile(paper_table1):
         plot_table1(sweep, rows, read_csv(paper_table1), out_dir, written)
     kept = [os.path.join(directory, d) for d in sweep.get("run_dirs", [])
             if os.path.isfile(os.path.join(directory, d, "summary.json"))]

@@ -1,0 +1,197 @@
+// The built `maneuvermap` executable's sweep and plot commands: exit codes, messages, and figures
+// drawn on a small run directory, a small sweep directory and a snapshot (non-empty PNG files).
+#include <sys/wait.h>
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "cli/support.hpp"
+
+namespace {
+
+using mm::cli::testing::read_file;
+using mm::cli::testing::temp_dir;
+using mm::cli::testing::write_file;
+
+struct result {
+  int code = -1;
+  std::string out;
+  std::string err;
+};
+
+/// Runs `ENV maneuvermap ARGS` (shell text) with its output captured.
+result run(const std::string& args, const std::string& tag, const std::string& env = "") {
+  const temp_dir dir("sweep_binary_" + tag);
+  const std::string command = env + " " + std::string(MANEUVERMAP_EXE) + " " + args + " >" + (dir / "out").string() +
+                              " 2>" + (dir / "err").string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(dir / "out");
+  r.err = read_file(dir / "err");
+  return r;
+}
+
+bool contains(const std::string& text, const std::string& piece) { return text.find(piece) != std::string::npos; }
+
+const std::string scenario = std::string(MM_TESTS_CLI_DIR) + "/data/small-crossing.yaml";
+
+/// A sweep file of the small scenario: 2 cells × 2 repetitions of 1.5 s runs, plus `extra`.
+std::string small_sweep(const std::string& parameters, const std::string& extra = "") {
+  return "format: maneuvermap-sweep/1\nname: small\nscenario: " + scenario + "\nparameters:\n" + parameters +
+         "  duration_s: 1.5\npolicies: [adj]\nrepetitions: 2\n" + extra;
+}
+
+/// Whether the plots can be drawn here: /usr/bin/python3 (or MM_PYTHON) imports matplotlib. In CI
+/// (CI set) they must be: scripts/install-deps.sh installs python3-matplotlib.
+bool matplotlib_available() {
+  const char* python = std::getenv("MM_PYTHON");
+  const std::string command = std::string(python != nullptr && *python != '\0' ? python : "/usr/bin/python3") +
+                              " -c 'import matplotlib, numpy' >/dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+#define REQUIRE_MATPLOTLIB()                                                                          \
+  do {                                                                                                \
+    if (!matplotlib_available()) {                                                                    \
+      if (std::getenv("CI") != nullptr) FAIL() << "matplotlib is missing in CI (scripts/install-deps.sh)"; \
+      GTEST_SKIP() << "python3-matplotlib is not installed (scripts/install-deps.sh installs it)";      \
+    }                                                                                                 \
+  } while (false)
+
+void expect_png(const std::filesystem::path& file) {
+  ASSERT_TRUE(std::filesystem::exists(file)) << file;
+  const std::string bytes = read_file(file);
+  EXPECT_GT(bytes.size(), 5000U) << file;
+  EXPECT_EQ(bytes.substr(0, 8), std::string("\x89PNG\r\n\x1a\n", 8)) << file;
+}
+
+TEST(maneuvermap_sweep, help_and_list_show_the_sweeps) {
+  const result help = run("--help", "help");
+  EXPECT_TRUE(contains(help.out, "sweep")) << help.out;
+  EXPECT_TRUE(contains(help.out, "plot")) << help.out;
+  EXPECT_TRUE(contains(run("sweep --help", "sweep_help").out, "--jobs"));
+  EXPECT_TRUE(contains(run("run --help", "run_help").out, "--plots"));
+  const result list = run("list", "list");
+  EXPECT_EQ(list.code, 0);
+  EXPECT_TRUE(contains(list.out, "built-in sweeps")) << list.out;
+  EXPECT_TRUE(contains(list.out, "  table1 ")) << list.out;
+  EXPECT_TRUE(contains(list.out, "  roundabout ")) << list.out;
+}
+
+TEST(maneuvermap_sweep, a_good_sweep_exits_0_and_prints_its_table) {
+  const temp_dir dir("sweep_ok");
+  write_file(dir / "s.yaml", small_sweep("  a_kmh: [30, 40]\n"));
+  const result ok = run("sweep " + (dir / "s.yaml").string() + " --jobs 2 --out " + (dir / "out").string(), "ok2");
+  EXPECT_EQ(ok.code, 0) << ok.err;
+  EXPECT_TRUE(contains(ok.out, "| a_kmh | duration_s | policy |")) << ok.out;
+  EXPECT_TRUE(contains(ok.out, "4 runs, 0 failed")) << ok.out;
+  EXPECT_EQ(ok.err, "");  // no progress bar when standard error is not a terminal
+  EXPECT_TRUE(std::filesystem::exists(dir / "out/runs.csv"));
+}
+
+TEST(maneuvermap_sweep, a_failed_run_exits_1_with_its_rerun_command) {
+  const temp_dir dir("sweep_fail");
+  write_file(dir / "s.yaml", small_sweep("  a_kmh: [-5, 30]\n"));
+  const result r = run("sweep " + (dir / "s.yaml").string() + " --out " + (dir / "out").string(), "fail");
+  EXPECT_EQ(r.code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "run 0 failed")) << r.err;
+  EXPECT_TRUE(contains(r.err, "maneuvermap run " + scenario + " --set a_kmh=-5 --set duration_s=1.5 --policy adj --seed 7"))
+      << r.err;
+  EXPECT_TRUE(contains(r.out, "4 runs, 2 failed")) << r.out;
+}
+
+TEST(maneuvermap_sweep, a_bad_sweep_file_or_option_exits_2) {
+  const temp_dir dir("sweep_bad");
+  write_file(dir / "s.yaml", small_sweep("  a_kmh: [30, 40]\n", "jobs: 3\n"));
+  const result r = run("sweep " + (dir / "s.yaml").string(), "bad_key");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "s.yaml:9:1: jobs: unknown key")) << r.err;
+  EXPECT_EQ(run("sweep no-such-sweep", "bad_name").code, 2);
+  EXPECT_EQ(run("sweep table1 --jobs 0", "bad_jobs").code, 2);
+  EXPECT_EQ(run("sweep table1 --repetitions 0", "bad_repetitions").code, 2);
+}
+
+TEST(maneuvermap_plot, missing_target_python_or_script_exit_2) {
+  const temp_dir dir("plot_missing");
+  EXPECT_EQ(run("plot " + (dir / "nothing").string(), "no_target").code, 2);
+  const result python = run("plot " + dir.path().string(), "no_python", "MM_PYTHON=/nonexistent/python3");
+  EXPECT_EQ(python.code, 2);
+  EXPECT_TRUE(contains(python.err, "/nonexistent/python3")) << python.err;
+  const result script = run("plot " + dir.path().string(), "no_script", "MM_PLOT_SCRIPT=/nonexistent/plot.py");
+  EXPECT_EQ(script.code, 2);
+  EXPECT_TRUE(contains(script.err, "MM_PLOT_SCRIPT")) << script.err;
+}
+
+TEST(maneuvermap_plot, a_python_without_matplotlib_exits_2_with_a_clear_message) {
+  // A Python that cannot import matplotlib, whatever is installed: an empty module path.
+  const temp_dir dir("plot_no_matplotlib");
+  write_file(dir / "python", "#!/bin/sh\nexec /usr/bin/python3 -S -I \"$@\"\n");
+  std::filesystem::permissions(dir / "python", std::filesystem::perms::owner_all);
+  if (!std::filesystem::exists("/usr/bin/python3")) GTEST_SKIP() << "no /usr/bin/python3";
+  const result r = run("plot " + dir.path().string(), "no_matplotlib", "MM_PYTHON=" + (dir / "python").string());
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "matplotlib")) << r.err;
+}
+
+TEST(maneuvermap_plot, a_directory_that_is_neither_a_run_nor_a_sweep_exits_2) {
+  REQUIRE_MATPLOTLIB();
+  const temp_dir dir("plot_empty");
+  const result r = run("plot " + dir.path().string(), "empty");
+  EXPECT_EQ(r.code, 2);
+  EXPECT_TRUE(contains(r.err, "neither a run directory")) << r.err;
+}
+
+TEST(maneuvermap_plot, run_with_plots_draws_the_map_speed_and_top_down_view) {
+  REQUIRE_MATPLOTLIB();
+  const temp_dir dir("plot_run");
+  const result r = run("run " + scenario + " --set duration_s=1.5 --plots --out " + (dir / "run").string(), "run");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* name : {"map", "speed", "topdown"}) {
+    expect_png(dir / "run" / (std::string(name) + ".png"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "run" / (std::string(name) + ".svg"))) << name;
+  }
+  // Into another directory.
+  const result again = run("plot " + (dir / "run").string() + " --out " + (dir / "figures").string(), "run_out");
+  ASSERT_EQ(again.code, 0) << again.err;
+  expect_png(dir / "figures/map.png");
+}
+
+TEST(maneuvermap_plot, sweep_with_plots_draws_the_sweep_and_its_kept_runs) {
+  REQUIRE_MATPLOTLIB();
+  const temp_dir dir("plot_sweep");
+  write_file(dir / "s.yaml", small_sweep("  a_kmh: [30, 40]\n", "keep_runs: true\n"));
+  const result r =
+      run("sweep " + (dir / "s.yaml").string() + " --repetitions 1 --plots --out " + (dir / "out").string(), "sweep");
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_png(dir / "out/min-dist.png");
+  expect_png(dir / "out/speed-profiles.png");
+  expect_png(dir / "out/runs/a_kmh=30_duration_s=1.5_adj_rep0/map.png");
+  expect_png(dir / "out/runs/a_kmh=40_duration_s=1.5_adj_rep0/topdown.png");
+}
+
+TEST(maneuvermap_plot, a_table1_shaped_sweep_is_drawn_beside_the_paper) {
+  REQUIRE_MATPLOTLIB();
+  const temp_dir dir("plot_table1");
+  write_file(dir / "s.yaml", small_sweep("  a_kmh: [30]\n  b_kmh: [30, 35]\n"));
+  const result r = run("sweep " + (dir / "s.yaml").string() + " --plots --out " + (dir / "out").string(), "table1");
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_png(dir / "out/table1-comparison.png");
+}
+
+TEST(maneuvermap_plot, a_snapshot_is_drawn_as_displacement_sets) {
+  REQUIRE_MATPLOTLIB();
+  const temp_dir dir("plot_snapshot");
+  const result shot =
+      run("snapshot " + scenario + " --time 1.0 --agent A --out " + (dir / "shot.csv").string(), "snapshot");
+  ASSERT_EQ(shot.code, 0) << shot.err;
+  ASSERT_TRUE(std::filesystem::exists(dir / "shot.json"));
+  const result r = run("plot " + (dir / "shot.csv").string(), "snapshot_plot");
+  ASSERT_EQ(r.code, 0) << r.err;
+  expect_png(dir / "shot-sets.png");
+}
+
+}  // namespace
