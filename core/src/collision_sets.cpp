@@ -19,51 +19,54 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
       samples_(samples),
       window_(window),
       sample_count_(samples.size()),
-      times_(sample_times(window.duration, window.time_step)) {
-  poses_.reserve(times_.size() * sample_count_);
-  reach_centre_.reserve(times_.size());
+      times_(sample_times(window.duration, window.time_step)),
+      start_rotation_{std::cos(ego.pose.heading), std::sin(ego.pose.heading)} {
+  const double horizon = window.horizon;
+  const double cap = ego.limits.speed_cap;
+  straight_.reserve(sample_count_);
+  for (const maneuver& u : samples.maneuvers) {
+    // maneuver_pose's values for t > T_h, in its order of operations.
+    const double s = travelled_distance(ego.speed, u.acceleration, horizon, cap);
+    const double local_heading = u.curvature * s;
+    const double heading = ego.pose.heading + local_heading;
+    straight_.push_back({arc_point(u.curvature, s), unit_vector(local_heading),
+                         speed_after(ego.speed, u.acceleration, horizon, cap), heading,
+                         {std::cos(heading), std::sin(heading)}});
+  }
+  known_.assign(times_.size() * sample_count_, 0);
+  placements_ = std::make_unique_for_overwrite<stored[]>(times_.size() * sample_count_);
+  largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, horizon, cap);
+  largest_point_speed_ = largest_speed_ * (1.0 + max_curvature(ego.speed, ego.limits) * bounding_radius(ego.shape));
+  // Every sample's reference point lies within its arc length of the start, and no sample travels
+  // farther than the one at a_max.
   reach_radius_.reserve(times_.size());
   for (const double t : times_) {
-    vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-    vec2 hi = -lo;
-    const std::size_t first = poses_.size();
-    for (const maneuver& u : samples.maneuvers) {
-      const pose p = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
-      poses_.push_back(p);
-      directions_.push_back({std::cos(p.heading), std::sin(p.heading)});
-      lo = {std::min(lo.x, p.position.x), std::min(lo.y, p.position.y)};
-      hi = {std::max(hi.x, p.position.x), std::max(hi.y, p.position.y)};
-    }
-    const vec2 centre = 0.5 * (lo + hi);
-    double radius = 0.0;
-    for (std::size_t m = first; m < poses_.size(); ++m) {
-      radius = std::max(radius, norm(poses_[m].position - centre));
-    }
-    reach_centre_.push_back(centre);
-    reach_radius_.push_back(radius);
+    double travel = travelled_distance(ego.speed, ego.limits.max_acceleration, std::min(t, horizon), cap);
+    if (t > horizon) travel += largest_speed_ * (t - horizon);
+    reach_radius_.push_back(travel * (1.0 + 1e-12) + 1e-9);
   }
-  largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, window.horizon, ego.limits.speed_cap);
-  largest_point_speed_ = largest_speed_ * (1.0 + max_curvature(ego.speed, ego.limits) * bounding_radius(ego.shape));
+}
+
+pose ego_sweep::pose_at(std::size_t m, double t) const {
+  if (t > window_.horizon) {
+    const straight_part& part = straight_[m];
+    const double straight = part.speed * (t - window_.horizon);
+    const vec2 local = part.local + straight * part.along;
+    return {ego_.pose.position + rotated(local, start_rotation_.x, start_rotation_.y), part.heading};
+  }
+  return maneuver_pose(ego_.pose, ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
+}
+
+void ego_sweep::fill(std::size_t k, std::size_t m) const {
+  const double t = times_[k];
+  const pose p = pose_at(m, t);
+  const vec2 direction = t > window_.horizon ? straight_[m].direction : vec2{std::cos(p.heading), std::sin(p.heading)};
+  const std::size_t index = k * sample_count_ + m;
+  placements_[index] = {p.position.x, p.position.y, direction.x, direction.y};
+  known_[index] = 1;
 }
 
 namespace {
-
-/// Running minimum of every sample's clearance, and the first time index at which each sample
-/// could lower it.
-struct clearance_walk {
-  std::vector<running_minimum> minimum;
-  std::vector<std::size_t> next;
-};
-
-/// What stays the same while walking one obstacle through the sweep.
-struct walk_constants {
-  double reach;         ///< bounding radii of ego and obstacle [m]
-  double margin;        ///< [m]
-  double cap;           ///< [m]
-  double centre_rate;   ///< Lipschitz constant of the reference points' distance [m/s]
-  double distance_rate; ///< Lipschitz constant of the signed distance [m/s]
-  double time_step;     ///< [s]
-};
 
 /// First time index after k at which a quantity `gap` above the target, changing at most at
 /// `rate`, could reach the target.
@@ -74,77 +77,163 @@ std::size_t first_possible(std::size_t k, double gap, double rate, double time_s
   return k + static_cast<std::size_t>(steps) + 1;
 }
 
-/// Advances `walk` over time index k, with the obstacle at `where`.
-void advance(const ego_sweep& sweep, const forecast_obstacle& obstacle, const pose& where, const walk_constants& w,
-             std::size_t k, clearance_walk& walk) {
-  const vec2 o = where.position;
-  if (norm(o - sweep.reach_centre(k)) - sweep.reach_radius(k) - w.reach - w.margin >= w.cap) return;
-  const placed_footprint obstacle_footprint = place(obstacle.shape, where);
-  for (std::size_t m = 0; m < sweep.sample_count(); ++m) {
-    if (walk.next[m] > k) continue;
-    running_minimum& r = walk.minimum[m];
-    const double known = std::min(r.value, w.cap);
-    if (known <= -w.cap) {
-      walk.next[m] = std::numeric_limits<std::size_t>::max();
-      continue;
-    }
-    const pose& p = sweep.at(k, m);
-    const double bound = norm(p.position - o) - w.reach - w.margin;
-    if (bound >= known) {
-      walk.next[m] = first_possible(k, bound - known, w.centre_rate, w.time_step);
-      continue;
-    }
-    const double d = signed_distance(place(sweep.ego().shape, p.position, sweep.direction(k, m)), obstacle_footprint) - w.margin;
-    r.update(d, k);
-    walk.next[m] = first_possible(k, d - std::min(r.value, w.cap), w.distance_rate, w.time_step);
-  }
-}
+/// Where a sample stands in the walk that decides its sign.
+struct sign_state {
+  std::size_t next = 0;  ///< first time index at which it can come closer than its threshold
+  bool low = false;      ///< came within the refinement threshold at a sample time
+  bool negative = false; ///< touched at a sample time
+};
 
 }  // namespace
 
-std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obstacle& obstacle,
-                                      std::span<const double> forecast_times, double cap) {
+clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
+                                 std::span<const double> forecast_times, double cap)
+    : sweep_(sweep), obstacle_(obstacle), taus_(forecast_times.begin(), forecast_times.end()), cap_(cap) {
   const std::vector<double>& times = sweep.times();
   const motion_estimate& motion = obstacle.motion;
-  const double obstacle_radius = bounding_radius(obstacle.shape);
-  const double distance_rate = sweep.largest_point_speed() + motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
-  // Minima up to half a step's change above the cap can still refine to below it: walk exactly to there.
-  const double walk_cap = cap + distance_rate * sweep.window().time_step / 2.0;
-  const walk_constants w{bounding_radius(sweep.ego().shape) + obstacle_radius,
-                         sweep.window().margin,
-                         walk_cap,
-                         sweep.largest_speed() + motion.speed,
-                         distance_rate,
-                         sweep.window().time_step};
-  const ego_state& ego = sweep.ego();
   const collision_window& window = sweep.window();
-  const maneuver_samples& samples = sweep.samples();
-  std::vector<clearance_set> result;
-  result.reserve(forecast_times.size());
-  // The walk over the times t ≤ τ, where every forecast agrees; [0, shared_until) is done.
-  clearance_walk shared{std::vector<running_minimum>(sweep.sample_count()),
-                        std::vector<std::size_t>(sweep.sample_count(), 0)};
-  std::size_t shared_until = 0;
-  for (const double tau : forecast_times) {
-    for (; shared_until < times.size() && times[shared_until] <= tau; ++shared_until) {
-      advance(sweep, obstacle, forecast_pose(motion, tau, times[shared_until]), w, shared_until, shared);
-    }
-    clearance_walk walk = shared;
-    for (std::size_t k = shared_until; k < times.size(); ++k) {
-      advance(sweep, obstacle, forecast_pose(motion, tau, times[k]), w, k, walk);
-    }
-    clearance_set clearance(sweep.sample_count());
-    for (std::size_t m = 0; m < sweep.sample_count(); ++m) {
-      const running_minimum& r = walk.minimum[m];
-      double c = r.value;
-      if (c > -walk_cap && c < walk_cap) {
-        c = refined_minimum(times, r.argmin, [&](double t) { return clearance_at(ego, samples.maneuvers[m], obstacle, tau, t, window); },
-                            r.value);
-      }
-      clearance[m] = std::clamp(c, -cap, cap);
-    }
-    result.push_back(std::move(clearance));
+  const double step = window.time_step;
+  const double obstacle_radius = bounding_radius(obstacle.shape);
+  distance_rate_ = sweep.largest_point_speed() + motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
+  // Minima up to half a step's change above the cap can still refine to below it: walk exactly to there.
+  walk_cap_ = cap + distance_rate_ * step / 2.0;
+  reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius;
+  centre_rate_ = sweep.largest_speed() + motion.speed;
+  const std::size_t samples = sweep.sample_count();
+  const std::size_t count = taus_.size();
+
+  // The obstacle's placements: the CTRV part shared by every τ ≥ t, then per τ the straight part.
+  const double last_tau = count == 0 ? 0.0 : taus_.back();
+  for (std::size_t k = 0; k < times.size() && times[k] <= last_tau; ++k) {
+    const pose p = forecast_pose(motion, times[k], times[k]);
+    turning_.push_back({p.position, unit_vector(p.heading)});
   }
+  for (const double tau : taus_) {
+    const pose p = forecast_pose(motion, tau, tau);
+    turn_end_.push_back({p.position, unit_vector(p.heading)});
+    std::size_t k = 0;
+    while (k < times.size() && times[k] <= tau) ++k;
+    first_straight_.push_back(k);
+  }
+  sets_.assign(count, clearance_set(samples, cap));
+  exact_.assign(count, std::vector<std::uint8_t>(samples, 0));
+
+  // A sampled minimum above this refines to a positive clearance: between samples the signed
+  // distance can fall by at most L·step/2 below the nearest sample.
+  const double threshold = 0.5 * distance_rate_ * step * (1.0 + 1e-9) + 1e-12;
+  const double margin = window.margin;
+  const vec2 start = sweep.reach_centre(0);
+  bool near = false;
+  const auto advance = [&](std::size_t k, const obstacle_at& o, std::vector<sign_state>& states) {
+    const double disc_gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
+    if (disc_gap < walk_cap_) near = true;
+    if (disc_gap > threshold) return;
+    const placed_footprint obstacle_footprint = place(obstacle_.shape, o.position, o.direction);
+    for (std::size_t m = 0; m < samples; ++m) {
+      sign_state& state = states[m];
+      if (state.negative || state.next > k) continue;
+      const double target = state.low ? 0.0 : threshold;
+      const ego_sweep::placement p = sweep.at(k, m);
+      const double bound = norm(p.position - o.position) - reach_ - margin;
+      if (bound > target) {
+        state.next = first_possible(k, bound - target, centre_rate_, step);
+        continue;
+      }
+      const double d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
+      if (d <= 0.0) {
+        state.negative = true;
+        continue;
+      }
+      if (d <= threshold) state.low = true;
+      state.next = first_possible(k, d - (state.low ? 0.0 : threshold), distance_rate_, step);
+    }
+  };
+  std::vector<sign_state> shared(samples);
+  std::vector<sign_state> walk;
+  std::size_t shared_until = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    for (; shared_until < first_straight_[i]; ++shared_until) advance(shared_until, turning_[shared_until], shared);
+    walk = shared;
+    for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk);
+    for (std::size_t m = 0; m < samples; ++m) {
+      if (walk[m].negative) {
+        sets_[i][m] = -cap;
+      } else if (walk[m].low) {
+        exact(i, m);
+      }
+    }
+  }
+  if (!near) {
+    // Never within the walking cap of any sample: every clearance is exactly +cap.
+    inert_ = true;
+    for (auto& e : exact_) std::fill(e.begin(), e.end(), std::uint8_t{1});
+  }
+}
+
+clearance_field::obstacle_at clearance_field::obstacle_pose(std::size_t i, std::size_t k) const {
+  if (k < first_straight_[i]) return turning_[k];
+  const obstacle_at& end = turn_end_[i];
+  // forecast_pose's straight part, in its order of operations.
+  return {end.position + obstacle_.motion.speed * (sweep_.times()[k] - taus_[i]) * end.direction, end.direction};
+}
+
+double clearance_field::refined(std::size_t i, std::size_t m, const running_minimum& r) const {
+  const ego_state& ego = sweep_.ego();
+  const double margin = sweep_.window().margin;
+  const double tau = taus_[i];
+  return refined_minimum(
+      sweep_.times(), r.argmin,
+      [&](double t) {
+        return signed_distance(place(ego.shape, sweep_.pose_at(m, t)),
+                               place(obstacle_.shape, forecast_pose(obstacle_.motion, tau, t))) -
+               margin;
+      },
+      r.value);
+}
+
+double clearance_field::exact(std::size_t i, std::size_t m) {
+  if (exact_[i][m]) return sets_[i][m];
+  const std::vector<double>& times = sweep_.times();
+  const double step = sweep_.window().time_step;
+  const double margin = sweep_.window().margin;
+  running_minimum r;
+  std::size_t k = 0;
+  while (k < times.size()) {
+    const double known = std::min(r.value, walk_cap_);
+    if (known <= -walk_cap_) break;
+    const obstacle_at o = obstacle_pose(i, k);
+    const ego_sweep::placement p = sweep_.at(k, m);
+    const double bound = norm(p.position - o.position) - reach_ - margin;
+    if (bound >= known) {
+      k = first_possible(k, bound - known, centre_rate_, step);
+      continue;
+    }
+    const double d = signed_distance(place(sweep_.ego().shape, p.position, p.direction),
+                                     place(obstacle_.shape, o.position, o.direction)) -
+                     margin;
+    r.update(d, k);
+    k = first_possible(k, d - std::min(r.value, walk_cap_), distance_rate_, step);
+  }
+  double c = r.value;
+  if (c > -walk_cap_ && c < walk_cap_) c = refined(i, m, r);
+  c = std::clamp(c, -cap_, cap_);
+  sets_[i][m] = c;
+  exact_[i][m] = 1;
+  return c;
+}
+
+void clearance_field::make_all_exact() {
+  for (std::size_t i = 0; i < sets_.size(); ++i) {
+    for (std::size_t m = 0; m < sets_[i].size(); ++m) exact(i, m);
+  }
+}
+
+std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obstacle& obstacle,
+                                      std::span<const double> forecast_times, double cap) {
+  clearance_field field(sweep, obstacle, forecast_times, cap);
+  field.make_all_exact();
+  std::vector<clearance_set> result;
+  for (std::size_t i = 0; i < field.forecast_count(); ++i) result.push_back(field.set(i));
   return result;
 }
 

@@ -2,8 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <deque>
+#include <initializer_list>
 #include <limits>
+#include <map>
 #include <optional>
+#include <utility>
 
 #include "mm/assignment_search.hpp"
 #include "mm/collision_sets.hpp"
@@ -32,18 +37,33 @@ plan_result invalid(std::string error) {
   return result;
 }
 
-/// Clearances of each relevant obstacle [j][i][m], and how to turn them into indices.
+/// The clearances of every relevant obstacle under an assignment of forecast times, and how to
+/// turn them into indices. The reference holds ±1 per sample (collides or not) and counts; the fast
+/// path holds a `clearance_field` per obstacle and makes exact only the values the interpolating
+/// indices read: the corners of cells whose corners differ in sign.
 class evaluator {
  public:
   evaluator(const maneuver_samples& samples, bool reference) : samples_(samples), reference_(reference) {}
 
-  /// Sample-wise minimum: the clearance with every obstacle of the list at once (union of [CSS]).
-  clearance_set combined(std::span<const clearance_set* const> parts) const {
-    clearance_set c(samples_.size(), std::numeric_limits<double>::infinity());
-    for (const clearance_set* part : parts) {
-      for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], (*part)[m]);
-    }
-    return c;
+  /// Reference: the collision sets of obstacle j, per forecast time, as ±1 clearances.
+  void add_reference(std::vector<clearance_set> sets) { reference_sets_.push_back(std::move(sets)); }
+  /// Fast path: the clearance field of the next obstacle.
+  void add_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> taus) {
+    fields_.emplace_back(sweep, obstacle, taus, clearance_cap);
+  }
+
+  /// Sample-wise minimum over the obstacles, obstacle j at forecast index index[j] (the union of
+  /// the [CSS]); on the fast path exact wherever the indices read it.
+  clearance_set combined(std::span<const std::size_t> index) {
+    std::vector<std::pair<std::size_t, std::size_t>> parts;
+    for (std::size_t j = 0; j < index.size(); ++j) parts.emplace_back(j, index[j]);
+    return combined_parts(parts);
+  }
+
+  /// max(MI−, MI+) with obstacle j alone at forecast index i.
+  double room_alone(std::size_t j, std::size_t i) {
+    const std::pair<std::size_t, std::size_t> part{j, i};
+    return room(combined_parts(std::span(&part, 1)));
   }
 
   /// MI− and MI+ (spec §6): the reference counts safe samples' areas; the fast path interpolates.
@@ -60,6 +80,21 @@ class evaluator {
     return std::max(mi.brake, mi.accelerate);
   }
 
+  /// max(MI−, MI+) under an assignment, remembered: obstacles that can change nothing (inert)
+  /// count as forecast index 0, so assignments that differ only there are computed once.
+  double room_of(std::span<const std::size_t> index) {
+    std::vector<std::size_t> key(index.begin(), index.end());
+    if (!reference_) {
+      for (std::size_t j = 0; j < key.size(); ++j) {
+        if (fields_[j].inert()) key[j] = 0;
+      }
+    }
+    if (const auto it = rooms_.find(key); it != rooms_.end()) return it->second;
+    const double r = room(combined(index));
+    rooms_.emplace(std::move(key), r);
+    return r;
+  }
+
   sample_mask colliding(const clearance_set& c) const {
     sample_mask mask(samples_.size());
     for (std::size_t m = 0; m < c.size(); ++m) {
@@ -69,8 +104,71 @@ class evaluator {
   }
 
  private:
+  /// The sample-wise minimum over `parts` (obstacle, forecast index).
+  clearance_set combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts) {
+    clearance_set c(samples_.size(), std::numeric_limits<double>::infinity());
+    for (const auto& [j, i] : parts) {
+      const clearance_set& part = reference_ ? reference_sets_[j][i] : fields_[j].set(i);
+      for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], part[m]);
+    }
+    if (!reference_) make_read_values_exact(parts, c);
+    return c;
+  }
+
+  /// Replaces the placeholders (±cap) at the corners of sign-changing cells of both families'
+  /// grids by the exact minimum over the obstacles.
+  void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
+    std::vector<std::uint8_t> done(c.size(), 0);
+    const auto fix = [&](std::size_t m) {
+      if (done[m]) return;
+      done[m] = 1;
+      const bool positive = c[m] > 0.0;
+      double value = std::numeric_limits<double>::infinity();
+      for (const auto& [j, i] : parts) {
+        clearance_field& field = fields_[j];
+        double part = field.set(i)[m];
+        // A negative minimum is decided by the obstacles that collide; a positive one by all.
+        if (!field.is_exact(i, m) && (positive || part <= 0.0)) part = field.exact(i, m);
+        value = std::min(value, part);
+      }
+      c[m] = value;
+    };
+    for (const family f : {family::brake, family::accelerate}) {
+      const displacement_set& set = samples_.set(f);
+      if (set.degenerate) continue;
+      const std::size_t first = samples_.grid(f).begin;
+      const std::size_t columns = set.curvature_count;
+      const auto sign_changes = [&](std::initializer_list<std::size_t> corners) {
+        bool any_positive = false;
+        bool any_other = false;
+        for (const std::size_t m : corners) (c[m] > 0.0 ? any_positive : any_other) = true;
+        return any_positive && any_other;
+      };
+      for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+        if (columns == 1) {
+          const std::size_t lower = first + ia;
+          if (sign_changes({lower, lower + 1})) {
+            fix(lower);
+            fix(lower + 1);
+          }
+          continue;
+        }
+        for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
+          const std::size_t lower = first + ia * columns + ik;
+          const std::size_t upper = lower + columns;
+          if (sign_changes({lower, lower + 1, upper, upper + 1})) {
+            for (const std::size_t m : {lower, lower + 1, upper, upper + 1}) fix(m);
+          }
+        }
+      }
+    }
+  }
+
   const maneuver_samples& samples_;
   bool reference_;
+  std::vector<std::vector<clearance_set>> reference_sets_;
+  std::deque<clearance_field> fields_;
+  std::map<std::vector<std::size_t>, double> rooms_;
 };
 
 }  // namespace
@@ -113,37 +211,52 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
   window.time_step = std::min(window.time_step, config.collision_window);
   result.collision_time_step = window.time_step;
 
+  if (n == 0 && !options.reference && !config.record_samples) {
+    // Nothing can reach the ego: every index is 1 and the nominal maneuver is safe (spec §9: far
+    // obstacles cost nothing). The same result as the general path, without sampling anything.
+    result.time_to_collision = no_collision;
+    result.mi_brake.assign(tau_count, 1.0);
+    result.mi_accelerate.assign(tau_count, 1.0);
+    result.excluded = excluded_forecast_times(taus, result.time_to_collision);
+    result.selected_family = select_family(1.0, 1.0);
+    if (config.policy.kind == forecast_policy_kind::constant) {
+      result.forecast_index = constant_forecast_index(taus, config.policy.constant_forecast_time, result.excluded);
+    }
+    result.forecast_time = taus[result.forecast_index];
+    result.command = nominal;
+    result.mode = planning_mode::nominal;
+    return result;
+  }
+
   const maneuver_samples samples = sample_maneuvers(ego, nominal.curvature, config.displacement_horizon, options.resolution);
-  const evaluator evaluate(samples, options.reference);
+  evaluator evaluate(samples, options.reference);
 
   // Clearances per obstacle and forecast time (spec §5), and TTC (spec §6).
-  std::vector<std::vector<clearance_set>> clearance(n);
   std::vector<double> ttc(n, no_collision);
-  {
-    std::optional<ego_sweep> sweep;
-    if (!options.reference && n > 0) sweep.emplace(ego, samples, window);
-    for (std::size_t j = 0; j < n; ++j) {
-      if (options.reference) {
-        for (const sample_mask& mask : collision_sets_reference(ego, samples, relevant[j], taus, window, options.proof_resolution)) {
-          clearance_set c(samples.size());
-          for (std::size_t m = 0; m < c.size(); ++m) c[m] = mask.test(m) ? -1.0 : 1.0;
-          clearance[j].push_back(std::move(c));
-        }
-      } else {
-        clearance[j] = clearances(*sweep, relevant[j], taus, clearance_cap);
+  std::optional<ego_sweep> sweep;
+  if (!options.reference && n > 0) sweep.emplace(ego, samples, window);
+  for (std::size_t j = 0; j < n; ++j) {
+    if (options.reference) {
+      std::vector<clearance_set> sets;
+      for (const sample_mask& mask : collision_sets_reference(ego, samples, relevant[j], taus, window, options.proof_resolution)) {
+        clearance_set c(samples.size());
+        for (std::size_t m = 0; m < c.size(); ++m) c[m] = mask.test(m) ? -1.0 : 1.0;
+        sets.push_back(std::move(c));
       }
-      ttc[j] = time_to_collision(ego, nominal, relevant[j], window);
-      result.obstacles[relevant_track[j]].time_to_collision = ttc[j];
+      evaluate.add_reference(std::move(sets));
+    } else {
+      evaluate.add_field(*sweep, relevant[j], taus);
     }
+    ttc[j] = time_to_collision(ego, nominal, relevant[j], window);
+    result.obstacles[relevant_track[j]].time_to_collision = ttc[j];
   }
   result.time_to_collision = n == 0 ? no_collision : *std::min_element(ttc.begin(), ttc.end());
 
   // The map column: every obstacle forecast with τ_i (spec §6).
   std::vector<clearance_set> clearance_by_forecast;
   for (std::size_t i = 0; i < tau_count; ++i) {
-    std::vector<const clearance_set*> parts;
-    for (std::size_t j = 0; j < n; ++j) parts.push_back(&clearance[j][i]);
-    clearance_by_forecast.push_back(evaluate.combined(parts));
+    const std::vector<std::size_t> same(n, i);
+    clearance_by_forecast.push_back(evaluate.combined(same));
     const maneuverability_pair mi = evaluate.indices(clearance_by_forecast.back());
     result.mi_brake.push_back(mi.brake);
     result.mi_accelerate.push_back(mi.accelerate);
@@ -159,12 +272,15 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     }
     problem.candidates.push_back(std::move(allowed));
   }
-  problem.room = [&](std::span<const std::size_t> index) {
-    std::vector<const clearance_set*> parts;
-    for (std::size_t j = 0; j < index.size(); ++j) parts.push_back(&clearance[j][index[j]]);
-    return evaluate.room(evaluate.combined(parts));
+  problem.room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index); };
+  std::map<std::pair<std::size_t, std::size_t>, double> alone;
+  problem.room_alone = [&](std::size_t j, std::size_t i) {
+    const auto key = std::make_pair(j, i);
+    if (const auto it = alone.find(key); it != alone.end()) return it->second;
+    const double r = evaluate.room_alone(j, i);
+    alone.emplace(key, r);
+    return r;
   };
-  problem.room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room(clearance[j][i]); };
 
   std::vector<std::size_t> assignment(n, 0);
   if (config.policy.kind == forecast_policy_kind::constant) {
@@ -188,9 +304,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
       assignment = coordinate_ascent_assignment_search(problem).forecast_index;
     }
   }
-  std::vector<const clearance_set*> assigned_parts;
-  for (std::size_t j = 0; j < n; ++j) assigned_parts.push_back(&clearance[j][assignment[j]]);
-  const clearance_set assigned = evaluate.combined(assigned_parts);
+  const clearance_set assigned = evaluate.combined(assignment);
   const sample_mask colliding = evaluate.colliding(assigned);
   const maneuverability_pair selected = evaluate.indices(assigned);
   result.mi_brake_selected = selected.brake;

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -19,8 +22,12 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
 /// [CSS]; the magnitude lets estimators place the boundary between samples. Clamped to ±cap.
 using clearance_set = std::vector<double>;
 
-/// The ego's trajectories for every sample of a `maneuver_samples`, at every sample time of the
-/// collision window, computed once per planning step and shared by all obstacles and forecast times.
+/// The ego's trajectories for every sample of a `maneuver_samples` over the collision window,
+/// shared by all obstacles and forecast times of a planning step. Poses are computed lazily, the
+/// first time a (sample, sample time) pair is asked for, and kept; on the straight part (t > T_h)
+/// they cost no trigonometry. Every pose equals `maneuver_pose` bit for bit.
+///
+/// Holds mutable caches: one sweep must not be used by two threads at once.
 class ego_sweep {
  public:
   ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window);
@@ -30,48 +37,124 @@ class ego_sweep {
   const collision_window& window() const { return window_; }
   std::size_t sample_count() const { return sample_count_; }
   const std::vector<double>& times() const { return times_; }
-  /// Pose of sample m at time index k.
-  const pose& at(std::size_t k, std::size_t m) const { return poses_[k * sample_count_ + m]; }
-  /// (cos θ, sin θ) of that pose's heading.
-  vec2 direction(std::size_t k, std::size_t m) const { return directions_[k * sample_count_ + m]; }
+
+  /// Position [m] and heading direction (cos θ, sin θ) of sample m at time index k.
+  struct placement {
+    vec2 position;
+    vec2 direction;
+  };
+  placement at(std::size_t k, std::size_t m) const {
+    const std::size_t index = k * sample_count_ + m;
+    if (!known_[index]) fill(k, m);
+    const stored& p = placements_[index];
+    return {{p.px, p.py}, {p.dx, p.dy}};
+  }
+  /// Pose of sample m at any time t [s]: `maneuver_pose` bit for bit, cheaper on the straight part.
+  pose pose_at(std::size_t m, double t) const;
+
   /// Largest speed of any point of the ego footprint over the window [m/s]: v_max (1 + κ_max R).
   double largest_point_speed() const { return largest_point_speed_; }
   /// Largest speed of the ego's reference point over the window [m/s].
   double largest_speed() const { return largest_speed_; }
-
-  /// A disc containing the reference points of all samples at time index k.
-  vec2 reach_centre(std::size_t k) const { return reach_centre_[k]; }
+  /// A disc containing the reference points of all samples at time index k: about the start, of
+  /// radius the farthest arc length travelled by then [m].
+  vec2 reach_centre(std::size_t) const { return ego_.pose.position; }
   double reach_radius(std::size_t k) const { return reach_radius_[k]; }
 
  private:
+  void fill(std::size_t k, std::size_t m) const;
+
+  /// What the straight part (t > T_h) of sample m needs: `maneuver_pose`'s intermediate values.
+  struct straight_part {
+    vec2 local;       ///< arc end point in the ego frame [m]
+    vec2 along;       ///< unit vector of the local heading
+    double speed;     ///< at T_h [m/s]
+    double heading;   ///< world heading [rad]
+    vec2 direction;   ///< (cos, sin) of it
+  };
+
+  /// A placement without default member initialisers, so the cache is allocated uninitialised.
+  struct stored {
+    double px, py, dx, dy;
+  };
+
   ego_state ego_;
   const maneuver_samples& samples_;
   collision_window window_;
   std::size_t sample_count_;
   std::vector<double> times_;
-  std::vector<pose> poses_;
-  std::vector<vec2> directions_;
+  vec2 start_rotation_;  ///< (cos, sin) of the start heading
+  std::vector<straight_part> straight_;
+  mutable std::vector<std::uint8_t> known_;
+  mutable std::unique_ptr<stored[]> placements_;
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
-  std::vector<vec2> reach_centre_;
   std::vector<double> reach_radius_;
+};
+
+/// The collision sets of one obstacle for every forecast time, computed only as far as the
+/// indices need them (spec §5, §6). For every forecast time τ_i and sample m the *sign* of the
+/// clearance is always right; its *value* is computed on demand (`exact`) and is then equal, bit
+/// for bit, to `clearances_reference` clamped to ±cap. Until then a positive clearance reads
+/// +cap and a negative one −cap. The interpolating indices (`maneuverability_index`) use values
+/// only in cells whose corners differ in sign, so a caller makes those corners exact first.
+///
+/// How the signs are found cheaply, each step exact:
+/// - forecasts agree up to τ, so the walk over t ≤ τ_i is done once and shared by larger τ;
+/// - a sample is skipped at a time when a lower bound — the distance of bounding discs, or the last
+///   clearance computed minus the largest relative point speed L times the time elapsed — shows it
+///   stays above the threshold that matters: L·step/2 (above it, the refined minimum cannot reach
+///   0), then 0 once it has come that close;
+/// - a sample that comes within L·step/2 of contact without touching at a sample time is refined
+///   (`exact`), because only the refined minimum decides its sign.
+/// Holds mutable caches (the exact values): one field must not be used by two threads at once.
+class clearance_field {
+ public:
+  clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
+                  double cap);
+
+  std::size_t forecast_count() const { return sets_.size(); }
+  /// Entry [m] of forecast time i: the exact clearance where known, else ±cap with the right sign.
+  const clearance_set& set(std::size_t i) const { return sets_[i]; }
+  bool is_exact(std::size_t i, std::size_t m) const { return exact_[i][m] != 0; }
+  /// The clearance of sample m with forecast time i, equal to the clamped brute-force one.
+  double exact(std::size_t i, std::size_t m);
+  /// True when the obstacle stays farther than the cap from every sample at every time under
+  /// every forecast time: every clearance is exactly +cap, so the obstacle changes nothing.
+  bool inert() const { return inert_; }
+  /// Makes every clearance exact (what `clearances` returns).
+  void make_all_exact();
+
+ private:
+  /// Obstacle placement at time index k under forecast time i.
+  struct obstacle_at {
+    vec2 position;
+    vec2 direction;
+  };
+  obstacle_at obstacle_pose(std::size_t i, std::size_t k) const;
+  double refined(std::size_t i, std::size_t m, const running_minimum& r) const;
+
+  const ego_sweep& sweep_;
+  forecast_obstacle obstacle_;
+  std::vector<double> taus_;
+  double cap_;
+  double walk_cap_;
+  double reach_;          ///< bounding radii of ego and obstacle [m]
+  double centre_rate_;    ///< Lipschitz constant of the reference points' distance [m/s]
+  double distance_rate_;  ///< L: Lipschitz constant of the signed distance [m/s]
+  bool inert_ = false;
+  std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k
+  std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
+  std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i
+  std::vector<clearance_set> sets_;
+  std::vector<std::vector<std::uint8_t>> exact_;
 };
 
 /// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed
 /// clearance of sample m with the obstacle forecast with `forecast_times[i]` (ascending): the
 /// `refined_minimum` of the signed distance − margin over the sample times of the sweep, clamped
-/// to [−cap, cap].
-///
-/// Fast path, each step exact for the sampled times:
-/// - forecasts agree up to τ, so the minimum over t ≤ τ_i is accumulated once and shared by all
-///   larger τ;
-/// - a time is skipped for every sample when the obstacle is beyond the cap from a disc holding
-///   all of the sweep's reference points;
-/// - a (sample, time) pair is skipped when a lower bound — the distance of bounding discs, or the
-///   last clearance computed minus the largest relative speed of any two footprint points times
-///   the elapsed time (the signed distance is Lipschitz in time) — shows it cannot lower the
-///   sample's clearance below what is known, or below −cap.
-/// Equal, bit for bit, to `clearances_reference` clamped to ±cap.
+/// to [−cap, cap]. A `clearance_field` made exact everywhere: equal, bit for bit, to
+/// `clearances_reference` clamped to ±cap.
 std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                       std::span<const double> forecast_times, double cap);
 
