@@ -33,6 +33,11 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
                          speed_after(ego.speed, u.acceleration, horizon, cap), heading,
                          {std::cos(heading), std::sin(heading)}});
   }
+  for (const maneuver& u : samples.maneuvers) {
+    const double top = std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
+    sample_speed_.push_back(top);
+    sample_point_speed_.push_back(top * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape)));
+  }
   known_.assign(times_.size() * sample_count_, 0);
   placements_ = std::make_unique_for_overwrite<stored[]>(times_.size() * sample_count_);
   largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, horizon, cap);
@@ -55,6 +60,11 @@ pose ego_sweep::pose_at(std::size_t m, double t) const {
     return {ego_.pose.position + rotated(local, start_rotation_.x, start_rotation_.y), part.heading};
   }
   return maneuver_pose(ego_.pose, ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
+}
+
+ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
+  const pose p = pose_at(m, t);
+  return {p.position, t > window_.horizon ? straight_[m].direction : vec2{std::cos(p.heading), std::sin(p.heading)}};
 }
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {
@@ -99,6 +109,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   walk_cap_ = cap + distance_rate_ * step / 2.0;
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius;
   centre_rate_ = sweep.largest_speed() + motion.speed;
+  obstacle_turn_speed_ = motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
   const std::size_t samples = sweep.sample_count();
   const std::size_t count = taus_.size();
 
@@ -117,6 +128,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   }
   sets_.assign(count, clearance_set(samples, cap));
   exact_.assign(count, std::vector<std::uint8_t>(samples, 0));
+  prefix_.assign(samples, prefix_walk{});
+  golden_.assign(samples, {});
 
   // A sampled minimum above this refines to a positive clearance: between samples the signed
   // distance can fall by at most L·step/2 below the nearest sample.
@@ -132,11 +145,13 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     for (std::size_t m = 0; m < samples; ++m) {
       sign_state& state = states[m];
       if (state.negative || state.next > k) continue;
-      const double target = state.low ? 0.0 : threshold;
+      const double rate = distance_rate(m);
+      const double own_threshold = 0.5 * rate * step * (1.0 + 1e-9) + 1e-12;
+      const double target = state.low ? 0.0 : own_threshold;
       const ego_sweep::placement p = sweep.at(k, m);
       const double bound = norm(p.position - o.position) - reach_ - margin;
       if (bound > target) {
-        state.next = first_possible(k, bound - target, centre_rate_, step);
+        state.next = first_possible(k, bound - target, centre_rate(m), step);
         continue;
       }
       const double d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
@@ -144,8 +159,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         state.negative = true;
         continue;
       }
-      if (d <= threshold) state.low = true;
-      state.next = first_possible(k, d - (state.low ? 0.0 : threshold), distance_rate_, step);
+      if (d <= own_threshold) state.low = true;
+      state.next = first_possible(k, d - (state.low ? 0.0 : own_threshold), rate, step);
     }
   };
   std::vector<sign_state> shared(samples);
@@ -177,43 +192,65 @@ clearance_field::obstacle_at clearance_field::obstacle_pose(std::size_t i, std::
   return {end.position + obstacle_.motion.speed * (sweep_.times()[k] - taus_[i]) * end.direction, end.direction};
 }
 
-double clearance_field::refined(std::size_t i, std::size_t m, const running_minimum& r) const {
-  const ego_state& ego = sweep_.ego();
-  const double margin = sweep_.window().margin;
-  const double tau = taus_[i];
-  return refined_minimum(
-      sweep_.times(), r.argmin,
-      [&](double t) {
-        return signed_distance(place(ego.shape, sweep_.pose_at(m, t)),
-                               place(obstacle_.shape, forecast_pose(obstacle_.motion, tau, t))) -
-               margin;
-      },
-      r.value);
+double clearance_field::clearance_at_time(std::size_t i, std::size_t m, double t) const {
+  const ego_sweep::placement e = sweep_.placement_at(m, t);
+  obstacle_at o;
+  if (t > taus_[i]) {
+    const obstacle_at& end = turn_end_[i];
+    o = {end.position + obstacle_.motion.speed * (t - taus_[i]) * end.direction, end.direction};
+  } else {
+    const pose p = forecast_pose(obstacle_.motion, taus_[i], t);
+    o = {p.position, unit_vector(p.heading)};
+  }
+  return signed_distance(place(sweep_.ego().shape, e.position, e.direction),
+                         place(obstacle_.shape, o.position, o.direction)) -
+         sweep_.window().margin;
+}
+
+double clearance_field::refined(std::size_t i, std::size_t m, const running_minimum& r) {
+  const std::size_t k = r.argmin;
+  const auto at = [&](double t) { return clearance_at_time(i, m, t); };
+  // On the shared times (t ≤ τ) the search sees the same function for every τ: search once.
+  if (k + 1 < first_straight_[i]) {
+    for (const auto& [argmin, golden] : golden_[m]) {
+      if (argmin == k) return std::min(r.value, golden);
+    }
+    const double golden = refined_minimum(sweep_.times(), k, at, std::numeric_limits<double>::infinity());
+    golden_[m].emplace_back(k, golden);
+    return std::min(r.value, golden);
+  }
+  return refined_minimum(sweep_.times(), k, at, r.value);
 }
 
 double clearance_field::exact(std::size_t i, std::size_t m) {
   if (exact_[i][m]) return sets_[i][m];
-  const std::vector<double>& times = sweep_.times();
+  const std::size_t count = sweep_.times().size();
   const double step = sweep_.window().time_step;
   const double margin = sweep_.window().margin;
-  running_minimum r;
-  std::size_t k = 0;
-  while (k < times.size()) {
+  const double centre = centre_rate(m);
+  const double rate = distance_rate(m);
+  // Looks at time index k and returns the next one that can lower the minimum.
+  const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r) {
     const double known = std::min(r.value, walk_cap_);
-    if (known <= -walk_cap_) break;
-    const obstacle_at o = obstacle_pose(i, k);
+    if (known <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
     const ego_sweep::placement p = sweep_.at(k, m);
     const double bound = norm(p.position - o.position) - reach_ - margin;
-    if (bound >= known) {
-      k = first_possible(k, bound - known, centre_rate_, step);
-      continue;
-    }
+    if (bound >= known) return first_possible(k, bound - known, centre, step);
     const double d = signed_distance(place(sweep_.ego().shape, p.position, p.direction),
                                      place(obstacle_.shape, o.position, o.direction)) -
                      margin;
     r.update(d, k);
-    k = first_possible(k, d - std::min(r.value, walk_cap_), distance_rate_, step);
+    return first_possible(k, d - std::min(r.value, walk_cap_), rate, step);
+  };
+  // The shared times first (kept for larger τ), then this τ's straight part.
+  prefix_walk& prefix = prefix_[m];
+  const std::size_t shared = first_straight_[i];
+  if (prefix.until > shared) prefix = prefix_walk{};
+  for (; prefix.next < shared; prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum)) {
   }
+  prefix.until = shared;
+  running_minimum r = prefix.minimum;
+  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r);
   double c = r.value;
   if (c > -walk_cap_ && c < walk_cap_) c = refined(i, m, r);
   c = std::clamp(c, -cap_, cap_);

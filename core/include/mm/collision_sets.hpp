@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "mm/collision.hpp"
@@ -51,6 +52,13 @@ class ego_sweep {
   }
   /// Pose of sample m at any time t [s]: `maneuver_pose` bit for bit, cheaper on the straight part.
   pose pose_at(std::size_t m, double t) const;
+  /// Position and heading direction of sample m at any time t [s], as `place` would compute them
+  /// from `pose_at`.
+  placement placement_at(std::size_t m, double t) const;
+  /// Largest speed of sample m's reference point over the window [m/s].
+  double sample_speed(std::size_t m) const { return sample_speed_[m]; }
+  /// Largest speed of any point of the ego footprint executing sample m [m/s]: v_max (1 + |κ| R).
+  double sample_point_speed(std::size_t m) const { return sample_point_speed_[m]; }
 
   /// Largest speed of any point of the ego footprint over the window [m/s]: v_max (1 + κ_max R).
   double largest_point_speed() const { return largest_point_speed_; }
@@ -85,6 +93,8 @@ class ego_sweep {
   std::vector<double> times_;
   vec2 start_rotation_;  ///< (cos, sin) of the start heading
   std::vector<straight_part> straight_;
+  std::vector<double> sample_speed_;
+  std::vector<double> sample_point_speed_;
   mutable std::vector<std::uint8_t> known_;
   mutable std::unique_ptr<stored[]> placements_;
   double largest_speed_ = 0.0;
@@ -132,7 +142,20 @@ class clearance_field {
     vec2 direction;
   };
   obstacle_at obstacle_pose(std::size_t i, std::size_t k) const;
-  double refined(std::size_t i, std::size_t m, const running_minimum& r) const;
+  /// Signed distance − margin of sample m and the obstacle under forecast time i at time t [s]:
+  /// `clearance_at` bit for bit.
+  double clearance_at_time(std::size_t i, std::size_t m, double t) const;
+  double refined(std::size_t i, std::size_t m, const running_minimum& r);
+  /// Rates of sample m: of its reference point's distance and of the signed distance [m/s].
+  double centre_rate(std::size_t m) const { return sweep_.sample_speed(m) + obstacle_.motion.speed; }
+  double distance_rate(std::size_t m) const { return sweep_.sample_point_speed(m) + obstacle_turn_speed_; }
+
+  /// The exact walk of one sample over the shared times t ≤ τ (the same for every larger τ).
+  struct prefix_walk {
+    running_minimum minimum;
+    std::size_t next = 0;   ///< next time index to look at
+    std::size_t until = 0;  ///< time indices [0, until) are done
+  };
 
   const ego_sweep& sweep_;
   forecast_obstacle obstacle_;
@@ -146,8 +169,11 @@ class clearance_field {
   std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
   std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i
+  double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
   std::vector<clearance_set> sets_;
   std::vector<std::vector<std::uint8_t>> exact_;
+  std::vector<prefix_walk> prefix_;                                    ///< [m]
+  std::vector<std::vector<std::pair<std::size_t, double>>> golden_;  ///< [m]: (argmin, golden-section minimum) on shared times
 };
 
 /// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed
