@@ -674,10 +674,13 @@ std::string table_markdown(const sweep_spec& spec, std::span<const sweep_result>
   for (const cell& c : cells) failed += c.failed;
   std::string out = fmt::format("# Sweep `{}`\n\n", spec.name);
   if (!spec.description.empty()) out += spec.description + "\n\n";
-  out += fmt::format(
-      "Scenario `{}`, metrics of {}; {} run{} ({} failed), {} repetition{} per cell with seeds {} + repetition.\n\n",
-      spec.scenario_argument, spec.agent, results.size(), results.size() == 1 ? "" : "s", failed, spec.repetitions,
-      spec.repetitions == 1 ? "" : "s", spec.base_seed);
+  const std::string seeds = spec.repetitions == 1
+                                ? fmt::format("1 run per cell, seed {}", spec.base_seed)
+                                : fmt::format("{} repetitions per cell, seeds {} to {} (seed = {} + repetition)",
+                                              spec.repetitions, spec.base_seed, spec.base_seed + spec.repetitions - 1,
+                                              spec.base_seed);
+  out += fmt::format("Scenario `{}`, metrics of {}; {} run{} ({} failed); {}.\n\n", spec.scenario_argument, spec.agent,
+                     results.size(), results.size() == 1 ? "" : "s", failed, seeds);
   out += "Each cell: mean ± sample standard deviation over its runs (a count in brackets when fewer runs had a "
          "value); crashes: runs that crashed / runs; bypass: the majority side (runs on it / runs).\n\n";
   std::vector<std::string> header;
