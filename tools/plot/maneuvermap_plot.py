@@ -474,13 +474,19 @@ def plot_topdown(run, out_dir, name, written):
     if xs:
         pad = 6.0
         x0, x1, y0, y1 = min(xs) - pad, max(xs) + pad, min(ys) - pad, max(ys) + pad
+        # Not thinner than 3:5, so that a straight road shows its surroundings.
+        span = 0.6 * max(x1 - x0, y1 - y0)
+        if x1 - x0 < span:
+            x0, x1 = (x0 + x1 - span) / 2, (x0 + x1 + span) / 2
+        if y1 - y0 < span:
+            y0, y1 = (y0 + y1 - span) / 2, (y0 + y1 + span) / 2
         ax.set_xlim(x0, x1)
         ax.set_ylim(y0, y1)
     ax.set_aspect("equal")
     ax.set_xlabel("x (east) [m]")
     ax.set_ylabel("y (north) [m]")
     ax.set_title(title, fontsize=10)
-    ax.legend(loc="best", fontsize=8)
+    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.08), fontsize=8, ncol=2, frameon=False)
     save(fig, out_dir, name, written)
 
 
