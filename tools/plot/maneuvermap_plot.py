@@ -549,7 +549,7 @@ def plot_min_dist(sweep, rows, out_dir, written):
         if key[:-1] not in combos:
             combos.append(key[:-1])
     policies = sorted({k[-1] for k in cells}, key=policy_key)
-    fig, ax = plt.subplots(figsize=(max(6.0, 1.2 + 0.5 * len(combos) * len(policies) * 0.6), 4.6))
+    fig, ax = plt.subplots(figsize=(min(16.0, max(6.0, 1.5 + 0.18 * len(combos) * len(policies))), 4.6))
     width = 0.8 / len(policies)
     for p_i, policy in enumerate(policies):
         for c_i, combo in enumerate(combos):
@@ -567,15 +567,21 @@ def plot_min_dist(sweep, rows, out_dir, written):
                 ax.plot([x], [0], marker="x", color="#b30000", ms=8, mew=2, ls="none")
                 ax.annotate(f"{crashes}/{len(group)}", (x, 0), xytext=(0, -14), textcoords="offset points",
                             ha="center", fontsize=7, color="#b30000")
+    varying = [i for i, p in enumerate(params) if len(sweep["parameters"][p]) > 1]
+    fixed = [f"{p} = {sweep['parameters'][p][0]:g}" for i, p in enumerate(params) if i not in varying]
     ax.set_xticks(range(len(combos)))
-    ax.set_xticklabels([", ".join(f"{p} = {v:g}" for p, v in zip(params, combo)) or sweep["scenario"]
-                        for combo in combos], rotation=0 if len(combos) <= 4 else 30, ha="center" if len(combos) <= 4 else "right")
+    ax.set_xticklabels(["\n".join(f"{params[i]} = {combo[i]:g}" for i in varying) or sweep["scenario"]
+                        for combo in combos], fontsize=8 if len(combos) > 6 else 9)
+    if fixed:
+        ax.text(0.0, 1.01, "fixed: " + ", ".join(fixed), transform=ax.transAxes, fontsize=8, va="bottom")
     ax.set_ylabel("minimum distance [m]")
     ax.set_title(f"Sweep {sweep['sweep']}: minimum distance of {sweep['agent']} "
+                 + ("\n" if fixed else "")
                  + (f"(mean ± sd over {sweep['repetitions']} repetitions)" if sweep["repetitions"] > 1 else "(one run per cell)"))
     handles, labels = ax.get_legend_handles_labels()
-    handles.append(Line2D([], [], marker="x", color="#b30000", mew=2, ls="none"))
-    labels.append("crash (runs crashed / runs)")
+    if any(r["crash"] == "1" for r in rows):
+        handles.append(Line2D([], [], marker="x", color="#b30000", mew=2, ls="none"))
+        labels.append("crash (runs crashed / runs)")
     ax.legend(handles, labels, loc="best")
     ax.margins(y=0.15)
     save(fig, out_dir, "min-dist", written)
