@@ -1,10 +1,13 @@
 #include "mm/sim/simulation.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "sensing.hpp"
@@ -430,23 +433,52 @@ struct simulation::impl {
                        v.spec->limits);
   }
 
+  /// Sensing and decisions of every planning vehicle. A vehicle reads the states of all agents
+  /// (poses and speeds, which nothing changes here) and writes only its own runtime and its own
+  /// command, so vehicles can be decided in any order, or in parallel.
   void decide() {
-    for (vehicle& v : vehicles) {
-      v.planned_now = false;
-      agent_state& s = states[id_of(v)];
-      if (s.status == agent_status::waiting || s.status == agent_status::active) sense(v);
-      if (s.status != agent_status::active) continue;
-      const maneuver nominal = nominal_of(v).nominal;
-      if (!v.spec->avoidance) {
-        v.command = nominal;
-        v.command_mode = mm::planning_mode::nominal;
-      } else if (!v.has_command || step % v.spec->planning_period == 0) {
-        plan(v, nominal);
-      }
-      v.has_command = true;
-      s.acceleration = v.command.acceleration;
-      s.curvature = v.command.curvature;
+    const std::size_t jobs = std::min(std::max<std::size_t>(options.jobs, 1), vehicles.size());
+    if (jobs <= 1) {
+      for (vehicle& v : vehicles) decide(v);
+      return;
     }
+    std::atomic<std::size_t> next{0};
+    std::vector<std::exception_ptr> errors(vehicles.size());
+    const auto work = [&] {
+      for (std::size_t i = next.fetch_add(1); i < vehicles.size(); i = next.fetch_add(1)) {
+        try {
+          decide(vehicles[i]);
+        } catch (...) {
+          errors[i] = std::current_exception();
+        }
+      }
+    };
+    {
+      std::vector<std::jthread> helpers;
+      for (std::size_t t = 1; t < jobs; ++t) helpers.emplace_back(work);
+      work();
+    }
+    // The first failure in id order, whatever the threads' timing.
+    for (const std::exception_ptr& error : errors) {
+      if (error) std::rethrow_exception(error);
+    }
+  }
+
+  void decide(vehicle& v) {
+    v.planned_now = false;
+    agent_state& s = states[id_of(v)];
+    if (s.status == agent_status::waiting || s.status == agent_status::active) sense(v);
+    if (s.status != agent_status::active) return;
+    const maneuver nominal = nominal_of(v).nominal;
+    if (!v.spec->avoidance) {
+      v.command = nominal;
+      v.command_mode = mm::planning_mode::nominal;
+    } else if (!v.has_command || step % v.spec->planning_period == 0) {
+      plan(v, nominal);
+    }
+    v.has_command = true;
+    s.acceleration = v.command.acceleration;
+    s.curvature = v.command.curvature;
   }
 
   void plan(vehicle& v, const maneuver& nominal) {

@@ -79,6 +79,10 @@ struct run_options {
   /// Time every `mm::plan` call with a steady clock (run_metrics::cpu_*_us, plan_record::cpu_time_us).
   /// Off by default so that the same scenario and seed give bit-identical outputs.
   bool measure_cpu_time = false;
+  /// Threads that sense and plan the planning vehicles of a step in parallel (1: the calling
+  /// thread only; 0 means 1). Each vehicle's decision depends only on the states at the start of
+  /// the step, so any value gives bit-identical outputs.
+  std::size_t jobs = 1;
 };
 
 /// A run of a scenario on a fixed time grid t_k = k·dt (pure computation, no I/O).
