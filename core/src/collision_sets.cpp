@@ -131,8 +131,10 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   const std::size_t count = taus_.size();
 
   // The obstacle's placements: the CTRV part shared by every τ ≥ t, then per τ the straight part.
+  // Without a turn every forecast time gives the same forecast: all times are shared.
+  independent_ = motion.yaw_rate == 0.0;
   const double last_tau = count == 0 ? 0.0 : taus_.back();
-  for (std::size_t k = 0; k < times.size() && times[k] <= last_tau; ++k) {
+  for (std::size_t k = 0; k < times.size() && (independent_ || times[k] <= last_tau); ++k) {
     const pose p = forecast_pose(motion, times[k], times[k]);
     turning_.push_back({p.position, unit_vector(p.heading)});
   }
@@ -140,11 +142,12 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     const pose p = forecast_pose(motion, tau, tau);
     turn_end_.push_back({p.position, unit_vector(p.heading)});
     std::size_t k = 0;
-    while (k < times.size() && times[k] <= tau) ++k;
+    while (k < times.size() && (independent_ || times[k] <= tau)) ++k;
     first_straight_.push_back(k);
   }
-  sets_.assign(count, clearance_set(samples, cap));
-  exact_.assign(count, std::vector<std::uint8_t>(samples, 0));
+  const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
+  sets_.assign(slots, clearance_set(samples, cap));
+  exact_.assign(slots, std::vector<std::uint8_t>(samples, 0));
   prefix_.assign(samples, prefix_walk{});
   golden_.assign(samples, {});
 
@@ -202,7 +205,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   std::vector<sign_state> shared(samples);
   std::vector<sign_state> walk;
   std::size_t shared_until = 0;
-  for (std::size_t i = 0; i < count; ++i) {
+  for (std::size_t i = 0; i < slots; ++i) {
     for (; shared_until < first_straight_[i]; ++shared_until) advance(shared_until, turning_[shared_until], shared);
     walk = shared;
     for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk);
@@ -223,6 +226,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
 
 clearance_field::obstacle_at clearance_field::obstacle_pose(std::size_t i, std::size_t k) const {
   if (k < first_straight_[i]) return turning_[k];
+  if (independent_) return turning_[k];
   const obstacle_at& end = turn_end_[i];
   // forecast_pose's straight part, in its order of operations.
   return {end.position + obstacle_.motion.speed * (sweep_.times()[k] - taus_[i]) * end.direction, end.direction};
@@ -231,7 +235,7 @@ clearance_field::obstacle_at clearance_field::obstacle_pose(std::size_t i, std::
 double clearance_field::clearance_at_time(std::size_t i, std::size_t m, double t) const {
   const ego_sweep::placement e = sweep_.placement_at(m, t);
   obstacle_at o;
-  if (t > taus_[i]) {
+  if (t > taus_[i] && !independent_) {
     const obstacle_at& end = turn_end_[i];
     o = {end.position + obstacle_.motion.speed * (t - taus_[i]) * end.direction, end.direction};
   } else {
@@ -258,7 +262,8 @@ double clearance_field::refined(std::size_t i, std::size_t m, const running_mini
   return refined_minimum(sweep_.times(), k, at, r.value);
 }
 
-double clearance_field::exact(std::size_t i, std::size_t m) {
+double clearance_field::exact(std::size_t forecast, std::size_t m) {
+  const std::size_t i = slot(forecast);
   if (exact_[i][m]) return sets_[i][m];
   const std::size_t count = sweep_.times().size();
   const double step = sweep_.window().time_step;

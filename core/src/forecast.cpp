@@ -13,13 +13,16 @@ struct line_fit {
   double slope;
 };
 
+/// Fitted relative to the first value, so that constant values give exactly that value and a slope
+/// of exactly 0 (a straight, steady obstacle then has ω = 0 and forecasts that do not depend on τ).
 line_fit fit_line(const std::vector<double>& t, const std::vector<double>& y, double at) {
   const double n = static_cast<double>(t.size());
+  const double origin = y.front();
   double mean_t = 0.0;
   double mean_y = 0.0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     mean_t += t[i];
-    mean_y += y[i];
+    mean_y += y[i] - origin;
   }
   mean_t /= n;
   mean_y /= n;
@@ -27,10 +30,10 @@ line_fit fit_line(const std::vector<double>& t, const std::vector<double>& y, do
   double sty = 0.0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     stt += (t[i] - mean_t) * (t[i] - mean_t);
-    sty += (t[i] - mean_t) * (y[i] - mean_y);
+    sty += (t[i] - mean_t) * (y[i] - origin - mean_y);
   }
   const double slope = stt > 0.0 ? sty / stt : 0.0;
-  return {mean_y + slope * (at - mean_t), slope};
+  return {origin + (mean_y + slope * (at - mean_t)), slope};
 }
 
 }  // namespace
@@ -72,6 +75,10 @@ motion_estimate estimate_motion(const obstacle_track& track, double history_wind
 }
 
 pose forecast_pose(const motion_estimate& motion, double forecast_time, double t) {
+  if (motion.yaw_rate == 0.0) {
+    // No turn: every forecast time gives the same straight line (computed so, bit for bit).
+    return {motion.pose.position + motion.speed * t * unit_vector(motion.pose.heading), motion.pose.heading};
+  }
   const double turning_time = std::min(t, forecast_time);
   const double turn = motion.yaw_rate * turning_time;
   // Chord of the CTRV arc: length v·t·sinc(ωt/2), direction θ + ωt/2.

@@ -80,13 +80,14 @@ class evaluator {
     return std::max(mi.brake, mi.accelerate);
   }
 
-  /// max(MI−, MI+) under an assignment, remembered: obstacles that can change nothing (inert)
-  /// count as forecast index 0, so assignments that differ only there are computed once.
+  /// max(MI−, MI+) under an assignment, remembered: obstacles whose forecast time changes nothing
+  /// (inert, or not turning) count as forecast index 0, so assignments that differ only there are
+  /// computed once.
   double room_of(std::span<const std::size_t> index) {
     std::vector<std::size_t> key(index.begin(), index.end());
     if (!reference_) {
       for (std::size_t j = 0; j < key.size(); ++j) {
-        if (fields_[j].inert()) key[j] = 0;
+        if (fields_[j].inert() || fields_[j].forecast_independent()) key[j] = 0;
       }
     }
     if (const auto it = rooms_.find(key); it != rooms_.end()) return it->second;

@@ -123,15 +123,18 @@ class clearance_field {
   clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
                   double cap);
 
-  std::size_t forecast_count() const { return sets_.size(); }
+  std::size_t forecast_count() const { return taus_.size(); }
   /// Entry [m] of forecast time i: the exact clearance where known, else ±cap with the right sign.
-  const clearance_set& set(std::size_t i) const { return sets_[i]; }
-  bool is_exact(std::size_t i, std::size_t m) const { return exact_[i][m] != 0; }
+  const clearance_set& set(std::size_t i) const { return sets_[slot(i)]; }
+  bool is_exact(std::size_t i, std::size_t m) const { return exact_[slot(i)][m] != 0; }
   /// The clearance of sample m with forecast time i, equal to the clamped brute-force one.
   double exact(std::size_t i, std::size_t m);
   /// True when the obstacle stays farther than the cap from every sample at every time under
   /// every forecast time: every clearance is exactly +cap, so the obstacle changes nothing.
   bool inert() const { return inert_; }
+  /// True when the obstacle does not turn (ω = 0): every forecast time gives the same forecast,
+  /// so one set serves them all.
+  bool forecast_independent() const { return independent_; }
   /// Makes every clearance exact (what `clearances` returns).
   void make_all_exact();
 
@@ -141,6 +144,8 @@ class clearance_field {
     vec2 position;
     vec2 direction;
   };
+  /// Where the set of forecast time i is kept: 0 for all when the forecasts do not depend on τ.
+  std::size_t slot(std::size_t i) const { return independent_ ? 0 : i; }
   obstacle_at obstacle_pose(std::size_t i, std::size_t k) const;
   /// Signed distance − margin of sample m and the obstacle under forecast time i at time t [s]:
   /// `clearance_at` bit for bit.
@@ -166,9 +171,10 @@ class clearance_field {
   double centre_rate_;    ///< Lipschitz constant of the reference points' distance [m/s]
   double distance_rate_;  ///< L: Lipschitz constant of the signed distance [m/s]
   bool inert_ = false;
-  std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k
+  bool independent_ = false;
+  std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k (every τ when ω = 0)
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
-  std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i
+  std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i (none when ω = 0)
   double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
   std::vector<clearance_set> sets_;
   std::vector<std::vector<std::uint8_t>> exact_;
