@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 namespace mm {
 namespace {
@@ -14,18 +15,20 @@ double cubic_sine_defect(double x) {
   return (x - std::sin(x)) / (x2 * x);
 }
 
+/// 4-point Gauss–Legendre on [−1, 1].
+constexpr std::array<double, 4> quadrature_nodes{-0.8611363115940526, -0.3399810435848563, 0.3399810435848563,
+                                                 0.8611363115940526};
+constexpr std::array<double, 4> quadrature_weights{0.3478548451374538, 0.6521451548625461, 0.6521451548625461,
+                                                   0.3478548451374538};
+
 /// ∫_{κ0}^{κ1} [G(s1, κ) − G(s0, κ)] dκ by 4-point Gauss–Legendre (the integrand is smooth).
 double cell_area(double s0, double s1, double kappa0, double kappa1) {
-  static constexpr std::array<double, 4> nodes{-0.8611363115940526, -0.3399810435848563,
-                                               0.3399810435848563, 0.8611363115940526};
-  static constexpr std::array<double, 4> weights{0.3478548451374538, 0.6521451548625461,
-                                                 0.6521451548625461, 0.3478548451374538};
   const double mid = 0.5 * (kappa0 + kappa1);
   const double half = 0.5 * (kappa1 - kappa0);
   double sum = 0.0;
-  for (std::size_t i = 0; i < nodes.size(); ++i) {
-    const double kappa = mid + half * nodes[i];
-    sum += weights[i] * (area_element_primitive(s1, kappa) - area_element_primitive(s0, kappa));
+  for (std::size_t i = 0; i < quadrature_nodes.size(); ++i) {
+    const double kappa = mid + half * quadrature_nodes[i];
+    sum += quadrature_weights[i] * (area_element_primitive(s1, kappa) - area_element_primitive(s0, kappa));
   }
   return sum * half;
 }
@@ -60,7 +63,7 @@ double area_element_primitive(double arc_length, double curvature) {
 
 displacement_set available_displacements(double initial_speed, const ego_limits& limits,
                                          double horizon, family fam,
-                                         const sampling_resolution& resolution) {
+                                         const sampling_resolution& resolution, bool node_weights) {
   displacement_set set;
   set.fam = fam;
   set.min_acceleration = fam == family::brake ? -limits.max_deceleration : 0.0;
@@ -80,28 +83,57 @@ displacement_set available_displacements(double initial_speed, const ego_limits&
     const double s1 = distance(a.hi);
     for (std::size_t ik = 0; ik < set.curvature_count; ++ik) {
       const node_cell k = node_and_cell(-set.max_curvature, set.max_curvature, ik, set.curvature_count);
-      const double weight = set.max_curvature > 0.0
-                                ? cell_area(s0, s1, k.lo, k.hi)
-                                : area_element_primitive(s1, 0.0) - area_element_primitive(s0, 0.0);
+      const double weight = !node_weights            ? 0.0
+                            : set.max_curvature > 0.0 ? cell_area(s0, s1, k.lo, k.hi)
+                                                      : area_element_primitive(s1, 0.0) - area_element_primitive(s0, 0.0);
       set.samples.push_back({{a.node, k.node}, arc_point(k.node, s), std::max(weight, 0.0)});
       set.area += set.samples.back().area_weight;
     }
   }
   const std::size_t kappa_cells = set.curvature_count > 1 ? set.curvature_count - 1 : 1;
+  // G(s, κ) at the quadrature points of every κ cell, for the arc length of each acceleration
+  // node: rows of cells share them (`cell_area` on the same values, computed once).
+  const auto primitives = [&](std::size_t ia) {
+    const double s = distance(set.samples[ia * set.curvature_count].u.acceleration);
+    std::vector<double> g;
+    g.reserve(kappa_cells * quadrature_nodes.size());
+    for (std::size_t ik = 0; ik < kappa_cells; ++ik) {
+      if (set.max_curvature <= 0.0) {
+        g.push_back(area_element_primitive(s, 0.0));
+        continue;
+      }
+      const double kappa0 = set.curvature_count == 1 ? -set.max_curvature : set.samples[ik].u.curvature;
+      const double kappa1 = set.curvature_count == 1 ? set.max_curvature : set.samples[ik + 1].u.curvature;
+      const double mid = 0.5 * (kappa0 + kappa1);
+      const double half = 0.5 * (kappa1 - kappa0);
+      for (const double node : quadrature_nodes) g.push_back(area_element_primitive(s, mid + half * node));
+    }
+    return g;
+  };
+  std::vector<double> lower = set.acceleration_count > 1 ? primitives(0) : std::vector<double>{};
   for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
-    const double s0 = distance(set.samples[ia * set.curvature_count].u.acceleration);
-    const double s1 = distance(set.samples[(ia + 1) * set.curvature_count].u.acceleration);
+    const std::vector<double> upper = primitives(ia + 1);
     for (std::size_t ik = 0; ik < kappa_cells; ++ik) {
       double weight = 0.0;
       if (set.max_curvature <= 0.0) {
-        weight = area_element_primitive(s1, 0.0) - area_element_primitive(s0, 0.0);
-      } else if (set.curvature_count == 1) {
-        weight = cell_area(s0, s1, -set.max_curvature, set.max_curvature);
+        weight = upper[ik] - lower[ik];
       } else {
-        weight = cell_area(s0, s1, set.samples[ik].u.curvature, set.samples[ik + 1].u.curvature);
+        const double kappa0 = set.curvature_count == 1 ? -set.max_curvature : set.samples[ik].u.curvature;
+        const double kappa1 = set.curvature_count == 1 ? set.max_curvature : set.samples[ik + 1].u.curvature;
+        const double half = 0.5 * (kappa1 - kappa0);
+        double sum = 0.0;
+        for (std::size_t q = 0; q < quadrature_nodes.size(); ++q) {
+          const std::size_t at = ik * quadrature_nodes.size() + q;
+          sum += quadrature_weights[q] * (upper[at] - lower[at]);
+        }
+        weight = sum * half;
       }
       set.cell_weights.push_back(std::max(weight, 0.0));
     }
+    lower = upper;
+  }
+  if (!node_weights) {
+    for (const double w : set.cell_weights) set.area += w;
   }
   constexpr double degenerate_area = 1e-12;
   if (set.area <= degenerate_area) {

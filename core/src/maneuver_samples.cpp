@@ -24,10 +24,10 @@ double maneuver_samples::total_weight(family f) const {
 }
 
 maneuver_samples sample_maneuvers(const ego_state& ego, double nominal_curvature, double horizon,
-                                  const sampling_resolution& resolution) {
+                                  const sampling_resolution& resolution, bool node_weights) {
   maneuver_samples out;
-  out.brake = available_displacements(ego.speed, ego.limits, horizon, family::brake, resolution);
-  out.accelerate = available_displacements(ego.speed, ego.limits, horizon, family::accelerate, resolution);
+  out.brake = available_displacements(ego.speed, ego.limits, horizon, family::brake, resolution, node_weights);
+  out.accelerate = available_displacements(ego.speed, ego.limits, horizon, family::accelerate, resolution, node_weights);
   const double kappa_max = out.brake.max_curvature;
   out.nominal_curvature = std::clamp(nominal_curvature, -kappa_max, kappa_max);
 

@@ -229,7 +229,9 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     return result;
   }
 
-  const maneuver_samples samples = sample_maneuvers(ego, nominal.curvature, config.displacement_horizon, options.resolution);
+  // The fast indices read only the weights of the cells between nodes; the reference counts nodes.
+  const maneuver_samples samples = sample_maneuvers(ego, nominal.curvature, config.displacement_horizon,
+                                                    options.resolution, options.reference || config.record_samples);
   evaluator evaluate(samples, options.reference);
 
   // Clearances per obstacle and forecast time (spec §5), and TTC (spec §6).
