@@ -64,6 +64,26 @@ void table1_cell(benchmark::State& state) {
   });
 }
 
+/// The many-agent scenario (s6-busy-roundabout: 50 planning vehicles) for its first
+/// `state.range(1)` simulated seconds with `state.range(0)` planning threads; reports the
+/// real-time factor (simulated time over wall time) at its 100 Hz step.
+void busy_roundabout(benchmark::State& state) {
+  mm::scenario_file::loaded_scenario loaded = mm::scenario_file::load("s6-busy-roundabout");
+  loaded.scenario.duration = static_cast<double>(state.range(1));
+  mm::sim::run_options options;
+  options.jobs = static_cast<std::size_t>(state.range(0));
+  double simulated = 0.0;
+  double wall = 0.0;
+  for (auto _ : state) {
+    const auto start = std::chrono::steady_clock::now();
+    mm::sim::simulation sim(loaded.scenario, options);
+    mm::sim::run(sim);
+    wall += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    simulated += sim.time();
+  }
+  state.counters["real_time_factor"] = simulated / wall;
+}
+
 void register_all() {
   for (const mm::bench::captured_input& c : mm::bench::captured_inputs()) {
     benchmark::RegisterBenchmark("plan", plan_case)
@@ -88,6 +108,13 @@ void register_all() {
       ->Repetitions(3)
       ->ComputeStatistics("max", largest)
       ->ReportAggregatesOnly(true);
+  benchmark::RegisterBenchmark("sim/busy_roundabout", busy_roundabout)
+      ->ArgNames({"jobs", "seconds"})
+      ->Args({1, 4})
+      ->Args({2, 4})
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime()
+      ->Iterations(1);
 }
 
 }  // namespace

@@ -173,6 +173,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       const double own_threshold = 0.5 * rate * step * (1.0 + 1e-9) + 1e-12;
       const double target = state.low ? 0.0 : own_threshold;
       const ego_sweep::placement p = sweep.at(k, m);
+      ++work_.bound_checks;
       const double bound = norm(p.position - o.position) - reach_ - margin;
       if (bound > target) {
         state.next = first_possible(k, bound - target, centre_rate(m), step);
@@ -194,6 +195,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         }
       }
       d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
+      ++work_.distance_evaluations;
       if (d <= 0.0) {
         state.negative = true;
         continue;
@@ -275,12 +277,14 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
     const double known = std::min(r.value, walk_cap_);
     if (known <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
     const ego_sweep::placement p = sweep_.at(k, m);
+    ++work_.bound_checks;
     const double bound = norm(p.position - o.position) - reach_ - margin;
     if (bound >= known) return first_possible(k, bound - known, centre, step);
     const double d = signed_distance(place(sweep_.ego().shape, p.position, p.direction),
                                      place(obstacle_.shape, o.position, o.direction)) -
                      margin;
     r.update(d, k);
+    ++work_.distance_evaluations;
     return first_possible(k, d - std::min(r.value, walk_cap_), rate, step);
   };
   // The shared times first (kept for larger τ), then this τ's straight part.
@@ -293,8 +297,12 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   running_minimum r = prefix.minimum;
   for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r);
   double c = r.value;
-  if (c > -walk_cap_ && c < walk_cap_) c = refined(i, m, r);
+  if (c > -walk_cap_ && c < walk_cap_) {
+    c = refined(i, m, r);
+    ++work_.refinements;
+  }
   c = std::clamp(c, -cap_, cap_);
+  ++work_.exact_values;
   sets_[i][m] = c;
   exact_[i][m] = 1;
   return c;

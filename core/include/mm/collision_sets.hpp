@@ -138,6 +138,15 @@ class clearance_field {
   /// Makes every clearance exact (what `clearances` returns).
   void make_all_exact();
 
+  /// How much work the field has done so far (for measurements, docs/performance.md).
+  struct work {
+    std::size_t bound_checks = 0;          ///< lower bounds looked at (pose distance, separation)
+    std::size_t distance_evaluations = 0;  ///< signed distances at sample times
+    std::size_t exact_values = 0;          ///< clearances made exact
+    std::size_t refinements = 0;           ///< golden-section searches run
+  };
+  const work& statistics() const { return work_; }
+
  private:
   /// Obstacle placement at time index k under forecast time i.
   struct obstacle_at {
@@ -176,6 +185,7 @@ class clearance_field {
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
   std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i (none when ω = 0)
   double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
+  work work_;
   std::vector<clearance_set> sets_;
   std::vector<std::vector<std::uint8_t>> exact_;
   std::vector<prefix_walk> prefix_;                                    ///< [m]
