@@ -11,6 +11,7 @@
 #include <chrono>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "captured_inputs.hpp"
@@ -45,6 +46,24 @@ void timed_loop(benchmark::State& state, Call&& call) {
 
 void plan_case(benchmark::State& state) {
   const mm::plan_input& in = input_with(static_cast<std::size_t>(state.range(0)));
+  timed_loop(state, [&] { return mm::plan(in); });
+}
+
+/// The one-obstacle input with `state.range(0)` forecast times spread over the same 0..2 s.
+void plan_forecast_grid(benchmark::State& state) {
+  mm::plan_input in = input_with(1);
+  const double last = in.config.forecast_step * static_cast<double>(in.config.forecast_count - 1);
+  in.config.forecast_count = static_cast<std::size_t>(state.range(0));
+  in.config.forecast_step = last / static_cast<double>(in.config.forecast_count - 1);
+  timed_loop(state, [&] { return mm::plan(in); });
+}
+
+/// The one-obstacle input sampled with `state.range(0)` accelerations × `state.range(1)`
+/// curvatures per family.
+void plan_resolution(benchmark::State& state) {
+  mm::plan_input in = input_with(1);
+  in.config.resolution.accelerations = static_cast<std::size_t>(state.range(0));
+  in.config.resolution.curvatures = static_cast<std::size_t>(state.range(1));
   timed_loop(state, [&] { return mm::plan(in); });
 }
 
@@ -89,6 +108,24 @@ void register_all() {
     benchmark::RegisterBenchmark("plan", plan_case)
         ->ArgName("obstacles")
         ->Arg(static_cast<long>(c.interacting))
+        ->Unit(benchmark::kMicrosecond)
+        ->Repetitions(5)
+        ->ComputeStatistics("max", largest)
+        ->ReportAggregatesOnly(true);
+  }
+  for (const long count : {5, 9, 17, 33}) {
+    benchmark::RegisterBenchmark("plan_forecast_grid", plan_forecast_grid)
+        ->ArgName("forecast_count")
+        ->Arg(count)
+        ->Unit(benchmark::kMicrosecond)
+        ->Repetitions(5)
+        ->ComputeStatistics("max", largest)
+        ->ReportAggregatesOnly(true);
+  }
+  for (const auto& [accelerations, curvatures] : {std::pair{11L, 15L}, {15L, 21L}, {21L, 31L}, {31L, 41L}}) {
+    benchmark::RegisterBenchmark("plan_resolution", plan_resolution)
+        ->ArgNames({"accelerations", "curvatures"})
+        ->Args({accelerations, curvatures})
         ->Unit(benchmark::kMicrosecond)
         ->Repetitions(5)
         ->ComputeStatistics("max", largest)

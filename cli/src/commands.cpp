@@ -210,7 +210,7 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
   csv_file map(file("map.csv"), "t,agent,tau,mi_brake,mi_accel,excluded");
   csv_file decisions(file("decisions.csv"), "t,agent,tau_bar,family,mode,ttc,cpu_us");
 
-  mm::sim::simulation sim(s, {settings.measure_cpu_time});
+  mm::sim::simulation sim(s, {settings.measure_cpu_time, settings.jobs});
   std::size_t shown_step = 0;
   mm::sim::run(sim, [&](const mm::sim::simulation& now) {
     const std::string t = fixed(now.time());

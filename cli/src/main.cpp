@@ -99,11 +99,12 @@ int validate_command(const scenario_options& o) {
 /// `--plots`: the figures of `dir` into `dir` (failures are reported as by `maneuvermap plot`).
 void plot_into(const std::filesystem::path& dir) { mm::cli::draw_plots(dir, {}); }
 
-int run_command(const scenario_options& o, const std::string& out, bool timing, bool plots) {
+int run_command(const scenario_options& o, const std::string& out, bool timing, bool plots, std::size_t jobs) {
   const sf::loaded_scenario loaded = load(o);
   mm::cli::run_settings settings;
   settings.out_dir = out.empty() ? std::filesystem::path("out") / loaded.scenario.name : std::filesystem::path(out);
   settings.measure_cpu_time = timing;
+  settings.jobs = jobs;
   settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
   const mm::cli::run_outcome outcome = mm::cli::run_scenario(loaded, settings);
   std::cout << fmt::format("{}: policy {}, seed {}, ended at t = {} s\n", loaded.scenario.name,
@@ -198,6 +199,10 @@ int main(int argc, char** argv) {
   run->add_option("--out", run_out, "Output directory (default out/<scenario name>)")->type_name("DIR");
   run->add_flag("--timing", timing, "Measure the CPU time of each planning step (outputs are then not reproducible)");
   bool run_plots = false;
+  std::size_t run_jobs = 1;
+  run->add_option("--jobs,-j", run_jobs, "Threads planning the vehicles of a step (outputs do not depend on it; default 1)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
+      ->type_name("N");
   run->add_flag("--plots", run_plots, "Then draw the run's figures into its output directory (maneuvermap plot)");
 
   sweep_options sweep_opts;
@@ -246,7 +251,7 @@ int main(int argc, char** argv) {
   try {
     if (list->parsed()) return list_command();
     if (validate->parsed()) return validate_command(validate_options);
-    if (run->parsed()) return run_command(run_options, run_out, timing, run_plots);
+    if (run->parsed()) return run_command(run_options, run_out, timing, run_plots, run_jobs);
     if (sweep->parsed()) return sweep_command(sweep_opts);
     if (plot->parsed()) return plot_command(plot_target, plot_out);
     if (snapshot->parsed()) return snapshot_command(snapshot_options, snapshot_time, snapshot_agent, snapshot_tau, snapshot_out);

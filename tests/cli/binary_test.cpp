@@ -128,6 +128,34 @@ agents:
   EXPECT_TRUE(contains(read_file(dir / "out" / "summary.json"), "\"v_mps\": 12.0")) << read_file(dir / "out" / "summary.json");
 }
 
+TEST(maneuvermap, run_with_two_planning_threads_writes_the_same_bytes_as_with_one) {
+  const temp_dir dir("run_jobs");
+  // Three planning vehicles that meet at a crossing: each one avoids the other two.
+  write_file(dir / "three.yaml", R"(format: maneuvermap-scenario/1
+name: three
+duration_s: 0.3
+agents:
+  - {name: A, kind: planning_vehicle, desired_speed_mps: 10,
+     path: {start: {position_m: [-25, 0], heading_deg: 0}, segments: [{straight_m: 100}]}}
+  - {name: B, kind: planning_vehicle, desired_speed_mps: 10,
+     path: {start: {position_m: [0, 25], heading_deg: -90}, segments: [{straight_m: 100}]}}
+  - {name: C, kind: planning_vehicle, desired_speed_mps: 10,
+     path: {start: {position_m: [25, 1.5], heading_deg: 180}, segments: [{straight_m: 100}]}}
+)");
+  const std::string scenario = (dir / "three.yaml").string();
+  const result one = run("run " + scenario + " --jobs 1 --out " + (dir / "one").string(), "run_jobs_1");
+  const result two = run("run " + scenario + " --jobs 2 --out " + (dir / "two").string(), "run_jobs_2");
+  ASSERT_EQ(one.code, 0) << one.err;
+  ASSERT_EQ(two.code, 0) << two.err;
+  EXPECT_EQ(one.out.substr(0, one.out.find("written to")), two.out.substr(0, two.out.find("written to")));
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+    const std::string a = read_file(dir / "one" / name);
+    EXPECT_FALSE(a.empty()) << name;
+    EXPECT_EQ(a, read_file(dir / "two" / name)) << name;
+  }
+  EXPECT_EQ(run("run " + scenario + " --jobs 0", "run_jobs_0").code, 2);
+}
+
 TEST(maneuvermap, snapshot_writes_csv_to_standard_output) {
   const result r = run("snapshot s1-crossing-no-steering --time 0.2 --agent A --tau 0", "snapshot_ok");
   EXPECT_EQ(r.code, 0) << r.err;

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
@@ -25,6 +26,7 @@ class input_error : public std::runtime_error {
 struct run_settings {
   std::filesystem::path out_dir;  ///< created if missing; the five files are overwritten
   bool measure_cpu_time = false;  ///< `--timing`: fill cpu_us and the CPU fields of summary.json
+  std::size_t jobs = 1;  ///< `--jobs`: threads planning the vehicles of a step (outputs do not depend on it)
   std::ostream* progress = nullptr;  ///< where to show progress (a terminal), or null
 };
 
