@@ -44,10 +44,18 @@ void timed_loop(benchmark::State& state, Call&& call) {
   state.counters["worst_us"] = worst;
 }
 
-void plan_case(benchmark::State& state) {
-  const mm::plan_input& in = input_with(static_cast<std::size_t>(state.range(0)));
+/// Runs `mm::plan(in)` once per iteration; also reports the work of one call (`mm::plan_work`).
+void timed_plan(benchmark::State& state, const mm::plan_input& in) {
   timed_loop(state, [&] { return mm::plan(in); });
+  const mm::plan_work work = mm::plan(in).work;
+  state.counters["relevant"] = static_cast<double>(work.relevant_obstacles);
+  state.counters["bounds"] = static_cast<double>(work.bound_checks);
+  state.counters["distances"] = static_cast<double>(work.distance_evaluations);
+  state.counters["refinements"] = static_cast<double>(work.refinements);
+  state.counters["assignments"] = static_cast<double>(work.assignments_evaluated);
 }
+
+void plan_case(benchmark::State& state) { timed_plan(state, input_with(static_cast<std::size_t>(state.range(0)))); }
 
 /// The one-obstacle input with `state.range(0)` forecast times spread over the same 0..2 s.
 void plan_forecast_grid(benchmark::State& state) {
@@ -55,7 +63,7 @@ void plan_forecast_grid(benchmark::State& state) {
   const double last = in.config.forecast_step * static_cast<double>(in.config.forecast_count - 1);
   in.config.forecast_count = static_cast<std::size_t>(state.range(0));
   in.config.forecast_step = last / static_cast<double>(in.config.forecast_count - 1);
-  timed_loop(state, [&] { return mm::plan(in); });
+  timed_plan(state, in);
 }
 
 /// The one-obstacle input sampled with `state.range(0)` accelerations × `state.range(1)`
@@ -64,7 +72,7 @@ void plan_resolution(benchmark::State& state) {
   mm::plan_input in = input_with(1);
   in.config.resolution.accelerations = static_cast<std::size_t>(state.range(0));
   in.config.resolution.curvatures = static_cast<std::size_t>(state.range(1));
-  timed_loop(state, [&] { return mm::plan(in); });
+  timed_plan(state, in);
 }
 
 void plan_reference_case(benchmark::State& state) {

@@ -96,6 +96,17 @@ class evaluator {
     return r;
   }
 
+  /// The work of every clearance field so far, and the assignments whose room was computed.
+  void add_work(plan_work& work) const {
+    for (const clearance_field& field : fields_) {
+      const clearance_field::work& w = field.statistics();
+      work.bound_checks += w.bound_checks;
+      work.distance_evaluations += w.distance_evaluations;
+      work.refinements += w.refinements;
+    }
+    work.assignments_evaluated += rooms_.size();
+  }
+
   sample_mask colliding(const clearance_set& c) const {
     sample_mask mask(samples_.size());
     for (std::size_t m = 0; m < c.size(); ++m) {
@@ -351,6 +362,9 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     result.command = last_resort.command;
     result.mode = last_resort.mode;
   }
+
+  result.work.relevant_obstacles = n;
+  evaluate.add_work(result.work);
 
   if (config.record_samples) {
     sample_snapshot snapshot;

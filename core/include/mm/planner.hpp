@@ -45,6 +45,16 @@ struct sample_snapshot {
 };
 
 /// Everything one planning step computes (spec §6–§9).
+/// How much collision work a planning step did (for cost measurements, docs/performance.md);
+/// zero on the reference path. Deterministic: a function of the input alone.
+struct plan_work {
+  std::size_t relevant_obstacles = 0;    ///< obstacles that can interact within T_c (spec §9)
+  std::size_t bound_checks = 0;          ///< (sample, time) pairs looked at through a lower bound
+  std::size_t distance_evaluations = 0;  ///< signed distances at sample times
+  std::size_t refinements = 0;           ///< golden-section searches of a clearance minimum
+  std::size_t assignments_evaluated = 0; ///< forecast-time assignments whose room was computed (spec §9)
+};
+
 struct plan_result {
   plan_status status = plan_status::ok;
   std::string error;                       ///< what was wrong with the input, when not ok
@@ -67,6 +77,7 @@ struct plan_result {
   double collision_time_step = 0.0;        ///< time step of the collision tests [s]
   std::vector<obstacle_assessment> obstacles;  ///< in input order
   std::optional<sample_snapshot> samples;  ///< when `config.record_samples`
+  plan_work work;                          ///< what the fast path computed
 
   bool ok() const { return status == plan_status::ok; }
 };
