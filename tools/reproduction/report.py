@@ -259,20 +259,27 @@ def variants_table(directories):
 
 
 def s3_timeline(run_dirs):
-    """For example runs: when B starts turning, when A first sees a finite TTC, first reacts, crashes."""
-    lines = ["| run | B starts turning | first finite TTC for A | A first avoids (mode not nominal) | A's first τ̄ > 0 while avoiding | crash |",
-             "|---|---|---|---|---|---|"]
+    """For example runs: when B appears and starts turning; A's reactions before the turn (to noise in
+    B's first observations) and from the turn on: first finite TTC, first avoiding step, first τ̄ > 0;
+    the crash or the gap."""
+    lines = ["| run | B appears | A avoids before B turns (steps) | B starts turning | from then: first finite TTC for A "
+             "| A first avoids (mode not nominal) | A's first τ̄ > 0 while avoiding | crash |",
+             "|---|---|---|---|---|---|---|---|"]
     for label, run_dir in run_dirs:
         trajectory = read_csv(os.path.join(run_dir, "trajectories.csv"))
+        appears = next((float(r["t"]) for r in trajectory if r["agent"] == "B"), None)
         turning = [float(r["t"]) for r in trajectory if r["agent"] == "B" and abs(float(r["curvature"])) > 1e-6]
+        turn = turning[0] if turning else None
         decisions = [r for r in read_csv(os.path.join(run_dir, "decisions.csv")) if r["agent"] == "A"]
-        first_ttc = next((float(r["t"]) for r in decisions if r["ttc"] != ""), None)
-        first_avoid = next((float(r["t"]) for r in decisions if r["mode"] != "nominal"), None)
-        first_long = next((float(r["t"]) for r in decisions if r["mode"] != "nominal" and float(r["tau_bar"]) > 0), None)
+        before = sum(1 for r in decisions if r["mode"] != "nominal" and (turn is None or float(r["t"]) < turn))
+        after = [r for r in decisions if turn is not None and float(r["t"]) >= turn]
+        first_ttc = next((float(r["t"]) for r in after if r["ttc"] != ""), None)
+        first_avoid = next((float(r["t"]) for r in after if r["mode"] != "nominal"), None)
+        first_long = next((float(r["t"]) for r in after if r["mode"] != "nominal" and float(r["tau_bar"]) > 0), None)
         with open(os.path.join(run_dir, "summary.json")) as f:
             m = planning_metrics(json.load(f))
         crash = f"{m['crash_time_s']:.2f} s at {m['speed_kmh']:.1f} km/h" if m.get("crash") else f"none (gap {m['min_dist_m']:.2f} m)"
-        lines.append(f"| {label} | {fmt(turning[0] if turning else None)} s | {fmt(first_ttc)} s | {fmt(first_avoid)} s | "
+        lines.append(f"| {label} | {fmt(appears)} s | {before} | {fmt(turn)} s | {fmt(first_ttc)} s | {fmt(first_avoid)} s | "
                      f"{fmt(first_long) + ' s' if first_long is not None else 'never'} | {crash} |")
     return "\n".join(lines)
 
