@@ -55,7 +55,18 @@ void timed_plan(benchmark::State& state, const mm::plan_input& in) {
   state.counters["assignments"] = static_cast<double>(work.assignments_evaluated);
 }
 
-void plan_case(benchmark::State& state) { timed_plan(state, input_with(static_cast<std::size_t>(state.range(0)))); }
+void plan_case(benchmark::State& state) {
+  const auto wanted = static_cast<std::size_t>(state.range(0));
+  const mm::plan_input& in = input_with(wanted);
+  // The replayed input must still be what it was captured as (scenarios can change).
+  const std::size_t interacting = mm::capture::count_interactions(in).interacting;
+  if (interacting != wanted) {
+    state.SkipWithError(("the captured input has " + std::to_string(interacting) + " interacting obstacles, not " +
+                         std::to_string(wanted) + ": capture it again (tools/capture)").c_str());
+    return;
+  }
+  timed_plan(state, in);
+}
 
 /// The one-obstacle input with `state.range(0)` forecast times spread over the same 0..2 s.
 void plan_forecast_grid(benchmark::State& state) {

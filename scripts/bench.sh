@@ -2,7 +2,7 @@
 # Measures what docs/performance.md reports. Installs, builds (Release) and runs:
 #   1. maneuvermap_bench (every case; JSON in out/bench/bench.json) and draws the cost chart
 #      docs/figures/performance/cost-growth.png;
-#   2. with --full also: the multi-obstacle search agreement (1000 scenes with 2 and with 3
+#   2. with --full also: the multi-obstacle search agreement (1100 random scenes with 2 and with 3
 #      obstacles), the Table 1 sweep with 1 and 2 jobs, and the 50-vehicle roundabout (s6) run
 #      with 1 and 2 planning threads, each timed. Logs in out/bench/.
 #   bash scripts/bench.sh [--full]
@@ -32,7 +32,7 @@ if [[ "${1:-}" == "--full" ]]; then
   }
   echo "== fast vs exhaustive forecast-time search" >&2
   for k in 2 3; do
-    ./build/release/tools/maneuvermap_assignment --scenes 1000 --obstacles "$k" --seed 1 | tee "$out/assignment-$k.txt"
+    ./build/release/tools/maneuvermap_assignment --scenes 1100 --obstacles "$k" --seed 1 | tee "$out/assignment-$k.txt"
   done
   echo "== table1 sweep, 1 and 2 jobs" >&2
   for j in 1 2; do

@@ -5,9 +5,10 @@
 // forecast times, the planning mode and the planner's CPU time. The benchmarks (benchmarks/captured_inputs.cpp)
 // replay a scenario to a time found here and plan on `simulation::planning_input` of that instant.
 //
-//   maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--summary]
+//   maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]
 //
-// SCENARIO is a built-in name or a file. --every K prints every K-th plan only; --summary prints
+// SCENARIO is a built-in name or a file. --every K prints every K-th plan only; --from T looks only
+// at plans from time T [s] on (the run before is simulated, not counted); --summary prints
 // only, per number of interacting obstacles, the step of least room (the strongest interaction)
 // among the plans that still find a safe maneuver (mode other than near_crash).
 #include <algorithm>
@@ -35,12 +36,13 @@ struct strongest {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--summary]\n");
+    std::fprintf(stderr, "usage: maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]\n");
     return 2;
   }
   std::string agent;
   std::size_t every = 1;
   bool summary = false;
+  double from = 0.0;
   mm::scenario_file::load_options options;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -48,6 +50,8 @@ int main(int argc, char** argv) {
       agent = argv[++i];
     } else if (arg == "--every" && i + 1 < argc) {
       every = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
+    } else if (arg == "--from" && i + 1 < argc) {
+      from = std::atof(argv[++i]);
     } else if (arg == "--summary") {
       summary = true;
     } else if (arg == "--set" && i + 1 < argc) {
@@ -67,6 +71,7 @@ int main(int argc, char** argv) {
   std::size_t plans = 0;
   if (!summary) std::printf("t_s,agent,obstacles,relevant,interacting,min_room,mode,cpu_us\n");
   mm::sim::run(sim, [&](const mm::sim::simulation& s) {
+    if (s.time() < from) return;
     for (mm::sim::agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
       if (!agent.empty() && s.info(id).name != agent) continue;
       if (!s.planned_now(id)) continue;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <thread>
 
 #include "mm/scenario_file/loader.hpp"
 #include "mm/sim/simulation.hpp"
@@ -32,7 +33,10 @@ interaction_count count_interactions(const plan_input& input) {
 plan_input replay(const capture_point& point) {
   scenario_file::load_options options;
   options.overrides = point.overrides;
-  sim::simulation sim(scenario_file::load(point.scenario, options).scenario);
+  // Planning threads change nothing in the run (run_options::jobs), only how long the replay takes.
+  sim::run_options run;
+  run.jobs = std::max(1U, std::thread::hardware_concurrency());
+  sim::simulation sim(scenario_file::load(point.scenario, options).scenario, run);
   const auto id = sim.find(point.agent);
   if (!id || *id >= sim.planning_vehicle_count()) {
     throw std::runtime_error(point.scenario + ": no planning vehicle called " + point.agent);
