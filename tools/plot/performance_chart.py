@@ -5,7 +5,8 @@
     python3 tools/plot/performance_chart.py bench.json OUT.png
 
 Three panels, median time per planning step with the slowest repetition's median as a bar:
-against the number of interacting obstacles (plan/obstacles:N), the number of forecast times
+against the number of interacting obstacles (plan/obstacles:N, each point labelled with the
+obstacles the planner kept as relevant), the number of forecast times
 (plan_forecast_grid/forecast_count:N) and the samples per family (plan_resolution/...).
 Also writes OUT with the .svg suffix, and prints the plotted values as CSV.
 """
@@ -31,7 +32,10 @@ def read(path):
         if b.get("run_type") != "aggregate":
             continue
         name = re.sub(r"/repeats:\d+$", "", b["run_name"])
-        rows.setdefault(name, {})[b["aggregate_name"]] = b["real_time"] * TO_US[b["time_unit"]]
+        row = rows.setdefault(name, {})
+        row[b["aggregate_name"]] = b["real_time"] * TO_US[b["time_unit"]]
+        if b["aggregate_name"] == "median" and "relevant" in b:
+            row["relevant"] = int(b["relevant"])
     return rows
 
 
@@ -77,9 +81,15 @@ def main():
         ax.set_xlabel(title)
         ax.set_ylabel("time per planning step [us]")
         ax.grid(True, which="both", alpha=0.3)
+        if title.startswith("interacting"):
+            for name, values in rows.items():
+                if name.startswith("plan/obstacles:") and "relevant" in values:
+                    n = args(name)[0]
+                    ax.annotate(f"{values['relevant']} relevant", (n, values["median"]), textcoords="offset points",
+                                xytext=(4, -14), fontsize=8)
         if "samples" in title:
             ax.set_xticks(x)
-            ax.set_xticklabels([labels.get(v, str(v)) for v in x])
+            ax.set_xticklabels([labels.get(v, str(v)) for v in x], rotation=30)
         else:
             ax.set_xticks(x)
         ax.legend(loc="upper left", fontsize=8)
