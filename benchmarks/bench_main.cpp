@@ -122,48 +122,38 @@ void busy_roundabout(benchmark::State& state) {
   state.counters["real_time_factor"] = simulated / wall;
 }
 
+/// `repetitions` repetitions, reported as their mean, median, spread and slowest (`max`) only.
+benchmark::internal::Benchmark* repeated(benchmark::internal::Benchmark* b, int repetitions) {
+  return b->Repetitions(repetitions)->ComputeStatistics("max", largest)->ReportAggregatesOnly(true);
+}
+
 void register_all() {
   for (const mm::bench::captured_input& c : mm::bench::captured_inputs()) {
-    benchmark::RegisterBenchmark("plan", plan_case)
+    repeated(benchmark::RegisterBenchmark("plan", plan_case), 5)
         ->ArgName("obstacles")
         ->Arg(static_cast<long>(c.interacting))
-        ->Unit(benchmark::kMicrosecond)
-        ->Repetitions(5)
-        ->ComputeStatistics("max", largest)
-        ->ReportAggregatesOnly(true);
+        ->Unit(benchmark::kMicrosecond);
   }
   for (const long count : {5, 9, 17, 33}) {
-    benchmark::RegisterBenchmark("plan_forecast_grid", plan_forecast_grid)
+    repeated(benchmark::RegisterBenchmark("plan_forecast_grid", plan_forecast_grid), 5)
         ->ArgName("forecast_count")
         ->Arg(count)
-        ->Unit(benchmark::kMicrosecond)
-        ->Repetitions(5)
-        ->ComputeStatistics("max", largest)
-        ->ReportAggregatesOnly(true);
+        ->Unit(benchmark::kMicrosecond);
   }
   for (const auto& [accelerations, curvatures] : {std::pair{11L, 15L}, {15L, 21L}, {21L, 31L}, {31L, 41L}}) {
-    benchmark::RegisterBenchmark("plan_resolution", plan_resolution)
+    repeated(benchmark::RegisterBenchmark("plan_resolution", plan_resolution), 5)
         ->ArgNames({"accelerations", "curvatures"})
         ->Args({accelerations, curvatures})
-        ->Unit(benchmark::kMicrosecond)
-        ->Repetitions(5)
-        ->ComputeStatistics("max", largest)
-        ->ReportAggregatesOnly(true);
+        ->Unit(benchmark::kMicrosecond);
   }
-  benchmark::RegisterBenchmark("plan_reference", plan_reference_case)
+  repeated(benchmark::RegisterBenchmark("plan_reference", plan_reference_case), 3)
       ->ArgName("obstacles")
       ->Arg(1)
       ->Unit(benchmark::kMillisecond)
-      ->Iterations(1)
-      ->Repetitions(3)
-      ->ComputeStatistics("max", largest)
-      ->ReportAggregatesOnly(true);
-  benchmark::RegisterBenchmark("sim/table1_cell", table1_cell)
+      ->Iterations(1);
+  repeated(benchmark::RegisterBenchmark("sim/table1_cell", table1_cell), 3)
       ->Unit(benchmark::kMillisecond)
-      ->Iterations(1)
-      ->Repetitions(3)
-      ->ComputeStatistics("max", largest)
-      ->ReportAggregatesOnly(true);
+      ->Iterations(1);
   benchmark::RegisterBenchmark("sim/busy_roundabout", busy_roundabout)
       ->ArgNames({"jobs", "seconds"})
       ->Args({1, 4})

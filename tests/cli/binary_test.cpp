@@ -1,6 +1,4 @@
 // The built `maneuvermap` executable: help, exit codes and messages.
-#include <sys/wait.h>
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -14,26 +12,14 @@ using mm::cli::testing::read_file;
 using mm::cli::testing::temp_dir;
 using mm::cli::testing::write_file;
 
-struct result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using result = mm::cli::testing::command_result;
+using mm::cli::testing::contains;
 
 /// Runs `maneuvermap ARGS` (ARGS is shell text) with its output captured.
 result run(const std::string& args, const std::string& tag) {
   const temp_dir dir("binary_" + tag);
-  const std::string command = std::string(MANEUVERMAP_EXE) + " " + args + " >" + (dir / "out").string() + " 2>" +
-                              (dir / "err").string() + " </dev/null";
-  const int status = std::system(command.c_str());
-  result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(dir / "out");
-  r.err = read_file(dir / "err");
-  return r;
+  return mm::cli::testing::run_command(MANEUVERMAP_EXE, args, dir);
 }
-
-bool contains(const std::string& text, const std::string& piece) { return text.find(piece) != std::string::npos; }
 
 TEST(maneuvermap, help_lists_the_commands_and_exits_0) {
   const result r = run("--help", "help");

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <sys/wait.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -63,5 +65,28 @@ inline std::vector<std::vector<std::string>> csv_rows(const std::filesystem::pat
   }
   return rows;
 }
+
+/// What a command printed and how it exited.
+struct command_result {
+  int code = -1;  ///< exit code, −1 when it did not exit normally
+  std::string out;
+  std::string err;
+};
+
+/// Runs `ENV EXE ARGS` (ENV and ARGS are shell text) with standard input from /dev/null, its
+/// output captured through files in `dir`.
+inline command_result run_command(const std::string& exe, const std::string& args, const temp_dir& dir,
+                                  const std::string& env = "") {
+  const std::string command = env + " " + exe + " " + args + " >" + (dir / "out").string() + " 2>" +
+                              (dir / "err").string() + " </dev/null";
+  const int status = std::system(command.c_str());
+  command_result r;
+  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(dir / "out");
+  r.err = read_file(dir / "err");
+  return r;
+}
+
+inline bool contains(const std::string& text, const std::string& piece) { return text.find(piece) != std::string::npos; }
 
 }  // namespace mm::cli::testing

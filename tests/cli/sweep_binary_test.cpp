@@ -1,7 +1,5 @@
 // The built `maneuvermap` executable's sweep and plot commands: exit codes, messages, and figures
 // drawn on a small run directory, a small sweep directory and a snapshot (non-empty PNG files).
-#include <sys/wait.h>
-
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -15,26 +13,14 @@ using mm::cli::testing::read_file;
 using mm::cli::testing::temp_dir;
 using mm::cli::testing::write_file;
 
-struct result {
-  int code = -1;
-  std::string out;
-  std::string err;
-};
+using result = mm::cli::testing::command_result;
+using mm::cli::testing::contains;
 
 /// Runs `ENV maneuvermap ARGS` (shell text) with its output captured.
 result run(const std::string& args, const std::string& tag, const std::string& env = "") {
   const temp_dir dir("sweep_binary_" + tag);
-  const std::string command = env + " " + std::string(MANEUVERMAP_EXE) + " " + args + " >" + (dir / "out").string() +
-                              " 2>" + (dir / "err").string() + " </dev/null";
-  const int status = std::system(command.c_str());
-  result r;
-  r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = read_file(dir / "out");
-  r.err = read_file(dir / "err");
-  return r;
+  return mm::cli::testing::run_command(MANEUVERMAP_EXE, args, dir, env);
 }
-
-bool contains(const std::string& text, const std::string& piece) { return text.find(piece) != std::string::npos; }
 
 const std::string scenario = std::string(MM_TESTS_CLI_DIR) + "/data/small-crossing.yaml";
 
