@@ -88,22 +88,6 @@ std::size_t first_possible(std::size_t k, double gap, double rate, double time_s
   return k + static_cast<std::size_t>(steps) + 1;
 }
 
-/// A lower bound of `signed_distance` of two rectangles, equal to it when they overlap: the largest
-/// separation along their four face normals (the closed form's first part). Rectangle `a` is
-/// given by its centre, unit heading and half sizes [m].
-double rectangle_separation(vec2 centre, vec2 axis, double half_length, double half_width, const placed_footprint& b) {
-  const vec2 d = b.centre - centre;
-  const vec2 a_side{-axis.y, axis.x};
-  const vec2 b_side{-b.axis.y, b.axis.x};
-  const double c = std::abs(dot(axis, b.axis));
-  const double s = std::abs(cross(axis, b.axis));
-  const double along_a = std::abs(dot(d, axis)) - half_length - (b.half_length * c + b.half_width * s);
-  const double side_a = std::abs(dot(d, a_side)) - half_width - (b.half_length * s + b.half_width * c);
-  const double along_b = std::abs(dot(d, b.axis)) - b.half_length - (half_length * c + half_width * s);
-  const double side_b = std::abs(dot(d, b_side)) - b.half_width - (half_length * s + half_width * c);
-  return std::max(std::max(along_a, side_a), std::max(along_b, side_b));
-}
-
 /// Where a sample stands in the walk that decides its sign.
 struct sign_state {
   std::size_t next = 0;  ///< first time index at which it can come closer than its threshold
@@ -127,6 +111,13 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius;
   centre_rate_ = sweep.largest_speed() + motion.speed;
   obstacle_turn_speed_ = motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
+  const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape);
+  const auto* obstacle_shape = std::get_if<rectangle>(&obstacle.shape);
+  rectangles_ = ego_shape != nullptr && obstacle_shape != nullptr;
+  if (rectangles_) {
+    ego_half_ = {ego_shape->length / 2.0, ego_shape->width / 2.0};
+    obstacle_half_ = {obstacle_shape->length / 2.0, obstacle_shape->width / 2.0};
+  }
   const std::size_t samples = sweep.sample_count();
   const std::size_t count = taus_.size();
 
@@ -156,16 +147,14 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   const double threshold = 0.5 * distance_rate_ * step * (1.0 + 1e-9) + 1e-12;
   const double margin = window.margin;
   const vec2 start = sweep.reach_centre(0);
-  const auto* ego_rectangle = std::get_if<rectangle>(&sweep.ego().shape);
-  const bool rectangles = ego_rectangle != nullptr && std::holds_alternative<rectangle>(obstacle.shape);
-  const double half_length = rectangles ? ego_rectangle->length / 2.0 : 0.0;
-  const double half_width = rectangles ? ego_rectangle->width / 2.0 : 0.0;
   bool near = false;
   const auto advance = [&](std::size_t k, const obstacle_at& o, std::vector<sign_state>& states) {
     const double disc_gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
     if (disc_gap < walk_cap_) near = true;
     if (disc_gap > threshold) return;
-    const placed_footprint obstacle_footprint = place(obstacle_.shape, o.position, o.direction);
+    const placed_footprint obstacle_footprint =
+        rectangles_ ? placed_footprint{} : place(obstacle_.shape, o.position, o.direction);
+    const placed_rectangle obstacle_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
     for (std::size_t m = 0; m < samples; ++m) {
       sign_state& state = states[m];
       if (state.negative || state.next > k) continue;
@@ -180,11 +169,11 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         continue;
       }
       double d = 0.0;
-      if (rectangles) {
+      if (rectangles_) {
         // The separation along the face normals bounds the signed distance from below (it is the
         // signed distance when they overlap) and changes no faster than it.
-        const double separation =
-            rectangle_separation(p.position, p.direction, half_length, half_width, obstacle_footprint) - margin;
+        const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
+        const double separation = face_separation(ego_rectangle, obstacle_rectangle) - margin;
         if (separation > target) {
           state.next = first_possible(k, separation - target, rate, step);
           continue;
@@ -193,8 +182,11 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
           state.negative = true;
           continue;
         }
+        // Apart (separation > 0): the signed distance is the corner distance.
+        d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
+      } else {
+        d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
       }
-      d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
       ++work_.distance_evaluations;
       if (d <= 0.0) {
         state.negative = true;
@@ -244,9 +236,15 @@ double clearance_field::clearance_at_time(std::size_t i, std::size_t m, double t
     const pose p = forecast_pose(obstacle_.motion, taus_[i], t);
     o = {p.position, unit_vector(p.heading)};
   }
-  return signed_distance(place(sweep_.ego().shape, e.position, e.direction),
-                         place(obstacle_.shape, o.position, o.direction)) -
-         sweep_.window().margin;
+  return distance(e.position, e.direction, o) - sweep_.window().margin;
+}
+
+double clearance_field::distance(vec2 position, vec2 direction, const obstacle_at& o) const {
+  if (rectangles_) {
+    return signed_distance(placed_rectangle{position, direction, ego_half_.x, ego_half_.y},
+                           placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y});
+  }
+  return signed_distance(place(sweep_.ego().shape, position, direction), place(obstacle_.shape, o.position, o.direction));
 }
 
 double clearance_field::refined(std::size_t i, std::size_t m, const running_minimum& r) {
@@ -280,9 +278,7 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
     ++work_.bound_checks;
     const double bound = norm(p.position - o.position) - reach_ - margin;
     if (bound >= known) return first_possible(k, bound - known, centre, step);
-    const double d = signed_distance(place(sweep_.ego().shape, p.position, p.direction),
-                                     place(obstacle_.shape, o.position, o.direction)) -
-                     margin;
+    const double d = distance(p.position, p.direction, o) - margin;
     r.update(d, k);
     ++work_.distance_evaluations;
     return first_possible(k, d - std::min(r.value, walk_cap_), rate, step);

@@ -108,43 +108,32 @@ double core_penetration(const placed_footprint& a, const placed_footprint& b) {
 }
 
 /// `p` in the frame of rectangle `r` (x along its heading).
-vec2 in_frame(const placed_footprint& r, vec2 p) {
+vec2 in_frame(const placed_rectangle& r, vec2 p) {
   const vec2 d = p - r.centre;
   return {dot(d, r.axis), cross(r.axis, d)};
 }
 
 /// Squared distance from a point given in a rectangle's frame to the rectangle (0 inside).
-double squared_distance_to_box(vec2 local, const placed_footprint& r) {
+double squared_distance_to_box(vec2 local, const placed_rectangle& r) {
   const double dx = std::max(std::abs(local.x) - r.half_length, 0.0);
   const double dy = std::max(std::abs(local.y) - r.half_width, 0.0);
   return dx * dx + dy * dy;
 }
 
-/// Signed distance of two rectangles: the separating-axis maximum when they overlap (minus the
-/// penetration depth), else the smallest corner-to-rectangle distance (exact for convex shapes).
-double rectangle_signed_distance(const placed_footprint& a, const placed_footprint& b) {
-  const vec2 d = b.centre - a.centre;
-  const vec2 a_side{-a.axis.y, a.axis.x};
-  const vec2 b_side{-b.axis.y, b.axis.x};
-  const double c = std::abs(dot(a.axis, b.axis));   // |cos| of the angle between them
-  const double s = std::abs(cross(a.axis, b.axis)); // |sin|
-  // Separation along each of the four face normals.
-  const double along_a = std::abs(dot(d, a.axis)) - a.half_length - (b.half_length * c + b.half_width * s);
-  const double side_a = std::abs(dot(d, a_side)) - a.half_width - (b.half_length * s + b.half_width * c);
-  const double along_b = std::abs(dot(d, b.axis)) - b.half_length - (a.half_length * c + a.half_width * s);
-  const double side_b = std::abs(dot(d, b_side)) - b.half_width - (a.half_length * s + a.half_width * c);
-  const double separation = std::max(std::max(along_a, side_a), std::max(along_b, side_b));
-  if (separation <= 0.0) return separation;
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < 4; ++i) {
-    best = std::min(best, squared_distance_to_box(in_frame(a, b.vertices[i]), a));
-    best = std::min(best, squared_distance_to_box(in_frame(b, a.vertices[i]), b));
-  }
-  return std::sqrt(best);
+/// The corners of a placed rectangle, in `place`'s order and arithmetic.
+std::array<vec2, 4> corners(const placed_rectangle& r) {
+  const vec2 along{r.axis.x * r.half_length, r.axis.y * r.half_length};
+  const vec2 across{-r.axis.y * r.half_width, r.axis.x * r.half_width};
+  return {r.centre + along + across, r.centre - along + across, r.centre - along - across,
+          r.centre + along - across};
+}
+
+placed_rectangle as_rectangle(const placed_footprint& f) {
+  return {f.centre, f.axis, f.half_length, f.half_width};
 }
 
 /// Signed distance of a point (the core of a disc) to a rectangle, before subtracting radii.
-double point_rectangle_signed_distance(vec2 p, const placed_footprint& r) {
+double point_rectangle_signed_distance(vec2 p, const placed_rectangle& r) {
   const vec2 local = in_frame(r, p);
   const double inside_x = r.half_length - std::abs(local.x);
   const double inside_y = r.half_width - std::abs(local.y);
@@ -263,14 +252,44 @@ std::optional<std::string> footprint_error(const footprint& shape) {
   return std::nullopt;
 }
 
+double face_separation(const placed_rectangle& a, const placed_rectangle& b) {
+  const vec2 d = b.centre - a.centre;
+  const vec2 a_side{-a.axis.y, a.axis.x};
+  const vec2 b_side{-b.axis.y, b.axis.x};
+  const double c = std::abs(dot(a.axis, b.axis));   // |cos| of the angle between them
+  const double s = std::abs(cross(a.axis, b.axis)); // |sin|
+  const double along_a = std::abs(dot(d, a.axis)) - a.half_length - (b.half_length * c + b.half_width * s);
+  const double side_a = std::abs(dot(d, a_side)) - a.half_width - (b.half_length * s + b.half_width * c);
+  const double along_b = std::abs(dot(d, b.axis)) - b.half_length - (a.half_length * c + a.half_width * s);
+  const double side_b = std::abs(dot(d, b_side)) - b.half_width - (a.half_length * s + a.half_width * c);
+  return std::max(std::max(along_a, side_a), std::max(along_b, side_b));
+}
+
+double corner_distance(const placed_rectangle& a, const placed_rectangle& b) {
+  const std::array<vec2, 4> ca = corners(a);
+  const std::array<vec2, 4> cb = corners(b);
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < 4; ++i) {
+    best = std::min(best, squared_distance_to_box(in_frame(a, cb[i]), a));
+    best = std::min(best, squared_distance_to_box(in_frame(b, ca[i]), b));
+  }
+  return std::sqrt(best);
+}
+
+double signed_distance(const placed_rectangle& a, const placed_rectangle& b) {
+  const double separation = face_separation(a, b);
+  if (separation <= 0.0) return separation;
+  return corner_distance(a, b);
+}
+
 bool overlaps(const placed_footprint& a, const placed_footprint& b, double margin) {
   return signed_distance(a, b) < margin;
 }
 
 double signed_distance(const placed_footprint& a, const placed_footprint& b) {
-  if (a.is_rectangle && b.is_rectangle) return rectangle_signed_distance(a, b);
-  if (a.is_rectangle && b.vertex_count == 1) return point_rectangle_signed_distance(b.vertices[0], a) - b.radius;
-  if (b.is_rectangle && a.vertex_count == 1) return point_rectangle_signed_distance(a.vertices[0], b) - a.radius;
+  if (a.is_rectangle && b.is_rectangle) return signed_distance(as_rectangle(a), as_rectangle(b));
+  if (a.is_rectangle && b.vertex_count == 1) return point_rectangle_signed_distance(b.vertices[0], as_rectangle(a)) - b.radius;
+  if (b.is_rectangle && a.vertex_count == 1) return point_rectangle_signed_distance(a.vertices[0], as_rectangle(b)) - a.radius;
   if (cores_intersect(a, b)) return -core_penetration(a, b) - a.radius - b.radius;
   return separated_core_distance(a, b) - a.radius - b.radius;
 }

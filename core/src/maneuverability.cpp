@@ -33,6 +33,10 @@ double positive_fraction(double c0, double c1) {
 }
 
 double positive_fraction(double c00, double c10, double c01, double c11) {
+  // A cell with one sign at every corner is whole or empty (what the polygon below would give).
+  const int positive_corners = (c00 > 0.0) + (c10 > 0.0) + (c01 > 0.0) + (c11 > 0.0);
+  if (positive_corners == 4) return 1.0;
+  if (positive_corners == 0) return 0.0;
   // Corners counter-clockwise.
   const std::array<vec2, 4> p{vec2{0.0, 0.0}, vec2{1.0, 0.0}, vec2{1.0, 1.0}, vec2{0.0, 1.0}};
   const std::array<double, 4> c{c00, c10, c11, c01};

@@ -118,8 +118,12 @@ class evaluator {
  private:
   /// The sample-wise minimum over `parts` (obstacle, forecast index).
   clearance_set combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts) {
-    clearance_set c(samples_.size(), std::numeric_limits<double>::infinity());
+    // Fast-path values lie in [−cap, cap] and an inert field is +cap everywhere: starting from the
+    // cap and skipping inert fields gives the same minimum.
+    const bool from_cap = !reference_ && !parts.empty();
+    clearance_set c(samples_.size(), from_cap ? clearance_cap : std::numeric_limits<double>::infinity());
     for (const auto& [j, i] : parts) {
+      if (from_cap && fields_[j].inert()) continue;
       const clearance_set& part = reference_ ? reference_sets_[j][i] : fields_[j].set(i);
       for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], part[m]);
     }
@@ -135,9 +139,10 @@ class evaluator {
       if (done[m]) return;
       done[m] = 1;
       const bool positive = c[m] > 0.0;
-      double value = std::numeric_limits<double>::infinity();
+      double value = clearance_cap;
       for (const auto& [j, i] : parts) {
         clearance_field& field = fields_[j];
+        if (field.inert()) continue;
         double part = field.set(i)[m];
         // A negative minimum is decided by the obstacles that collide; a positive one by all.
         if (!field.is_exact(i, m) && (positive || part <= 0.0)) part = field.exact(i, m);

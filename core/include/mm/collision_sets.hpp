@@ -160,6 +160,9 @@ class clearance_field {
   /// `clearance_at` bit for bit.
   double clearance_at_time(std::size_t i, std::size_t m, double t) const;
   double refined(std::size_t i, std::size_t m, const running_minimum& r);
+  /// Signed distance [m] of the ego placed at `position` with heading `direction` and the obstacle
+  /// placed at `o`: `signed_distance` of the placed footprints bit for bit.
+  double distance(vec2 position, vec2 direction, const obstacle_at& o) const;
   /// Rates of sample m: of its reference point's distance and of the signed distance [m/s].
   double centre_rate(std::size_t m) const { return sweep_.sample_speed(m) + obstacle_.motion.speed; }
   double distance_rate(std::size_t m) const { return sweep_.sample_point_speed(m) + obstacle_turn_speed_; }
@@ -185,6 +188,9 @@ class clearance_field {
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
   std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i (none when ω = 0)
   double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
+  bool rectangles_ = false;     ///< ego and obstacle are rectangles: the closed forms apply
+  vec2 ego_half_;               ///< half length and half width of the ego rectangle [m]
+  vec2 obstacle_half_;          ///< of the obstacle rectangle [m]
   work work_;
   std::vector<clearance_set> sets_;
   std::vector<std::vector<std::uint8_t>> exact_;
