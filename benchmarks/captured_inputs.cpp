@@ -14,6 +14,8 @@ std::span<const captured_input> captured_inputs() {
        "S6, least room among plans with two interacting neighbours in 0-8 s (17 relevant)"},
       {"obstacles:4", 4, {"s6-busy-roundabout", {}, "E02", 7.69},
        "S6, least room among plans with four interacting neighbours in 0-8 s (19 relevant)"},
+      {"obstacles:8", 8, {"s7-crosswalk-crowd", {}, "A", 4.05},
+       "S7, least room among plans with eight interacting pedestrians (A reaching the crosswalk)"},
   };
   return inputs;
 }

@@ -176,6 +176,23 @@ TEST(builtin_scenarios, s5_a_gets_past_two_crossing_vehicles_and_a_pedestrian) {
   EXPECT_LT(m.min_speed_kmh, 38.0);
 }
 
+// --- S7 ----------------------------------------------------------------------------------------
+
+TEST(builtin_scenarios, s7_a_naive_a_drives_into_the_crowd) {
+  const finished_run r = run_builtin("s7-crosswalk-crowd", "s7_naive", {{"avoid", 0.0}});
+  EXPECT_TRUE(r.outcome.metrics.at(0).crash);
+}
+
+TEST(builtin_scenarios, s7_a_passes_the_crosswalk_crowd_without_touching_anyone) {
+  if (mm::sim::testing::sanitize_scale()) GTEST_SKIP() << "eight obstacles for 8 s: too slow under the sanitizers";
+  const finished_run r = run_builtin("s7-crosswalk-crowd", "s7");
+  const mm::sim::run_metrics& m = r.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_GT(*m.min_dist_m, 0.15);  // measured 0.31 m (the margin is 0.3 m)
+  EXPECT_GT(m.time_in_brake_s, 1.0);  // measured 2.8 s
+  EXPECT_LT(m.min_speed_kmh, 29.0);   // measured 25.4 km/h
+}
+
 // --- output files ------------------------------------------------------------------------------
 
 TEST(cli_outputs, the_same_scenario_parameters_and_seed_give_byte_identical_files) {

@@ -314,7 +314,7 @@ TEST(scenario_file, the_built_in_s2_times_b_along_the_ring_to_a_s_merge_point) {
 }
 
 TEST(scenario_file, every_built_in_scenario_loads_and_is_valid) {
-  ASSERT_EQ(builtin_scenarios().size(), 8U);
+  ASSERT_EQ(builtin_scenarios().size(), 9U);
   for (const builtin_scenario& b : builtin_scenarios()) {
     const loaded_scenario l = load(b.name);
     EXPECT_EQ(l.scenario.name, b.name) << "a built-in's name is its file name";
