@@ -111,13 +111,17 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius;
   centre_rate_ = sweep.largest_speed() + motion.speed;
   obstacle_turn_speed_ = motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
-  const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape);
-  const auto* obstacle_shape = std::get_if<rectangle>(&obstacle.shape);
-  rectangles_ = ego_shape != nullptr && obstacle_shape != nullptr;
-  if (rectangles_) {
+  if (const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape)) {
     ego_half_ = {ego_shape->length / 2.0, ego_shape->width / 2.0};
-    obstacle_half_ = {obstacle_shape->length / 2.0, obstacle_shape->width / 2.0};
+    if (const auto* r = std::get_if<rectangle>(&obstacle.shape)) {
+      shapes_ = shape_pair::rectangles;
+      obstacle_half_ = {r->length / 2.0, r->width / 2.0};
+    } else if (const auto* d = std::get_if<disc>(&obstacle.shape)) {
+      shapes_ = shape_pair::rectangle_disc;
+      obstacle_radius_ = d->radius;
+    }
   }
+  const bool rectangles = shapes_ == shape_pair::rectangles;
   const std::size_t samples = sweep.sample_count();
   const std::size_t count = taus_.size();
 
@@ -153,7 +157,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     if (disc_gap < walk_cap_) near = true;
     if (disc_gap > threshold) return;
     const placed_footprint obstacle_footprint =
-        rectangles_ ? placed_footprint{} : place(obstacle_.shape, o.position, o.direction);
+        shapes_ == shape_pair::general ? place(obstacle_.shape, o.position, o.direction) : placed_footprint{};
     const placed_rectangle obstacle_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
     for (std::size_t m = 0; m < samples; ++m) {
       sign_state& state = states[m];
@@ -169,7 +173,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         continue;
       }
       double d = 0.0;
-      if (rectangles_) {
+      if (rectangles) {
         // The separation along the face normals bounds the signed distance from below (it is the
         // signed distance when they overlap) and changes no faster than it.
         const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
@@ -184,6 +188,10 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         }
         // Apart (separation > 0): the signed distance is the corner distance.
         d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
+      } else if (shapes_ == shape_pair::rectangle_disc) {
+        d = signed_distance(placed_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y}, o.position,
+                            obstacle_radius_) -
+            margin;
       } else {
         d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
       }
@@ -240,9 +248,13 @@ double clearance_field::clearance_at_time(std::size_t i, std::size_t m, double t
 }
 
 double clearance_field::distance(vec2 position, vec2 direction, const obstacle_at& o) const {
-  if (rectangles_) {
+  if (shapes_ == shape_pair::rectangles) {
     return signed_distance(placed_rectangle{position, direction, ego_half_.x, ego_half_.y},
                            placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y});
+  }
+  if (shapes_ == shape_pair::rectangle_disc) {
+    return signed_distance(placed_rectangle{position, direction, ego_half_.x, ego_half_.y}, o.position,
+                           obstacle_radius_);
   }
   return signed_distance(place(sweep_.ego().shape, position, direction), place(obstacle_.shape, o.position, o.direction));
 }

@@ -282,14 +282,18 @@ double signed_distance(const placed_rectangle& a, const placed_rectangle& b) {
   return corner_distance(a, b);
 }
 
+double signed_distance(const placed_rectangle& r, vec2 centre, double radius) {
+  return point_rectangle_signed_distance(centre, r) - radius;
+}
+
 bool overlaps(const placed_footprint& a, const placed_footprint& b, double margin) {
   return signed_distance(a, b) < margin;
 }
 
 double signed_distance(const placed_footprint& a, const placed_footprint& b) {
   if (a.is_rectangle && b.is_rectangle) return signed_distance(as_rectangle(a), as_rectangle(b));
-  if (a.is_rectangle && b.vertex_count == 1) return point_rectangle_signed_distance(b.vertices[0], as_rectangle(a)) - b.radius;
-  if (b.is_rectangle && a.vertex_count == 1) return point_rectangle_signed_distance(a.vertices[0], as_rectangle(b)) - a.radius;
+  if (a.is_rectangle && b.vertex_count == 1) return signed_distance(as_rectangle(a), b.vertices[0], b.radius);
+  if (b.is_rectangle && a.vertex_count == 1) return signed_distance(as_rectangle(b), a.vertices[0], a.radius);
   if (cores_intersect(a, b)) return -core_penetration(a, b) - a.radius - b.radius;
   return separated_core_distance(a, b) - a.radius - b.radius;
 }

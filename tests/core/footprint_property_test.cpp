@@ -43,6 +43,12 @@ TEST(footprint_property, rectangle_closed_forms_equal_the_placed_footprints_and_
                               std::to_string(pb.heading) + ")";
     ASSERT_EQ(closed, signed_distance(a, b)) << input;
     ASSERT_NEAR(closed, general, 1e-9) << input;
+    // b's centre as a disc of radius b.width / 2.
+    const double radius = rb.width / 2.0;
+    const double disc_closed = signed_distance(qa, pb.position, radius);
+    ASSERT_EQ(disc_closed, signed_distance(a, place(disc{radius}, pb))) << input;
+    ASSERT_EQ(disc_closed, signed_distance(place(disc{radius}, pb), a)) << input;
+    ASSERT_NEAR(disc_closed, signed_distance(place(as_polygon(ra), pa), place(disc{radius}, pb)), 1e-9) << input;
     const double separation = face_separation(qa, qb);
     ASSERT_LE(separation, closed + 1e-12) << input;
     if (closed <= 0.0) {

@@ -188,9 +188,13 @@ class clearance_field {
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
   std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i (none when ω = 0)
   double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
-  bool rectangles_ = false;     ///< ego and obstacle are rectangles: the closed forms apply
+  /// Which closed form the distances use: two rectangles, a rectangular ego and a disc, or the
+  /// general placed footprints.
+  enum class shape_pair : std::uint8_t { rectangles, rectangle_disc, general };
+  shape_pair shapes_ = shape_pair::general;
   vec2 ego_half_;               ///< half length and half width of the ego rectangle [m]
   vec2 obstacle_half_;          ///< of the obstacle rectangle [m]
+  double obstacle_radius_ = 0.0;  ///< of the obstacle disc [m]
   work work_;
   std::vector<clearance_set> sets_;
   std::vector<std::vector<std::uint8_t>> exact_;

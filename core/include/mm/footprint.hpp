@@ -71,6 +71,10 @@ double corner_distance(const placed_rectangle& a, const placed_rectangle& b);
 /// equal bit for bit to `signed_distance` of the placed footprints.
 double signed_distance(const placed_rectangle& a, const placed_rectangle& b);
 
+/// Signed distance [m] of a rectangle and a disc of `radius` [m] centred at `centre`: equal bit for
+/// bit to `signed_distance` of the placed footprints.
+double signed_distance(const placed_rectangle& r, vec2 centre, double radius);
+
 /// `shape` placed at `where`.
 placed_footprint place(const footprint& shape, const pose& where);
 
