@@ -60,7 +60,11 @@ pose ego_sweep::pose_at(std::size_t m, double t) const {
     const vec2 local = part.local + straight * part.along;
     return {ego_.pose.position + rotated(local, start_rotation_.x, start_rotation_.y), part.heading};
   }
-  return maneuver_pose(ego_.pose, ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
+  // maneuver_pose on the arc (t ≤ T_h), in its order of operations, with the start's rotation kept.
+  const maneuver& u = samples_.maneuvers[m];
+  const double s = travelled_distance(ego_.speed, u.acceleration, t, ego_.limits.speed_cap);
+  const vec2 local = arc_point(u.curvature, s);
+  return {ego_.pose.position + rotated(local, start_rotation_.x, start_rotation_.y), ego_.pose.heading + u.curvature * s};
 }
 
 ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
