@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Measures what docs/performance.md reports. Installs, builds (Release) and runs:
-#   1. maneuvermap_bench (every case; JSON in out/bench/bench.json) and draws the cost chart
+#   1. maneuvermap_bench (every case, among them the first 4 s of the 50-vehicle roundabout s6 with
+#      1 and 2 planning threads; JSON in out/bench/bench.json) and draws the cost chart
 #      docs/figures/performance/cost-growth.png;
 #   2. with --full also: the multi-obstacle search agreement (1100 random scenes with 2 and with 3
-#      obstacles), the Table 1 sweep with 1 and 2 jobs, and the 50-vehicle roundabout (s6) run
-#      with 1 and 2 planning threads, each timed. Logs in out/bench/.
+#      obstacles) and the Table 1 sweep with 1 and 2 jobs, timed. Logs in out/bench/.
 #   bash scripts/bench.sh [--full]
 # Run it on an otherwise idle machine: the timings are wall-clock.
 set -euo pipefail
@@ -41,10 +41,4 @@ if [[ "${1:-}" == "--full" ]]; then
     echo "table1 --jobs $j: $(cat "$out/table1-jobs$j.seconds") s" | tee -a "$out/sweeps.txt"
   done
   cmp "$out/table1-jobs1/runs.csv" "$out/table1-jobs2/runs.csv" && echo "runs.csv identical for 1 and 2 jobs" | tee -a "$out/sweeps.txt"
-  echo "== s6-busy-roundabout (20 s simulated), 1 and 2 planning threads" >&2
-  for j in 1 2; do
-    seconds "$out/s6-jobs$j.seconds" ./build/release/cli/maneuvermap run s6-busy-roundabout --jobs "$j" \
-      --out "$out/s6-jobs$j" >/dev/null
-    echo "s6 --jobs $j: $(cat "$out/s6-jobs$j.seconds") s wall for 20 s simulated" | tee -a "$out/many-agents.txt"
-  done
 fi

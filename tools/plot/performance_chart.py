@@ -82,17 +82,21 @@ def main():
         ax.set_ylabel("time per planning step [us]")
         ax.grid(True, which="both", alpha=0.3)
         if title.startswith("interacting"):
+            # Issue 5's targets for the median, where it sets one.
+            targets = [(n, t) for n, t in ((0, 5.0), (1, 100.0), (8, 1000.0)) if n in x]
+            ax.plot([t[0] for t in targets], [t[1] for t in targets], linestyle="none", marker="x", color="black",
+                    markersize=8, label="target (issue 5)")
             for name, values in rows.items():
                 if name.startswith("plan/obstacles:") and "relevant" in values:
                     n = args(name)[0]
                     ax.annotate(f"{values['relevant']} relevant", (n, values["median"]), textcoords="offset points",
-                                xytext=(4, -14), fontsize=8)
+                                xytext=(6, 4) if n == 0 else (4, -14), fontsize=8)
         if "samples" in title:
             ax.set_xticks(x)
             ax.set_xticklabels([labels.get(v, str(v)) for v in x], rotation=30)
         else:
             ax.set_xticks(x)
-        ax.legend(loc="upper left", fontsize=8)
+        ax.legend(loc="lower right" if title.startswith("interacting") else "upper left", fontsize=8)
     figure.suptitle("maneuvermap: cost of one planning step (maneuvermap_bench, one core)")
     figure.tight_layout()
     out.parent.mkdir(parents=True, exist_ok=True)
