@@ -60,11 +60,10 @@ pose ego_sweep::pose_at(std::size_t m, double t) const {
     const vec2 local = part.local + straight * part.along;
     return {ego_.pose.position + rotated(local, start_rotation_.x, start_rotation_.y), part.heading};
   }
-  // maneuver_pose on the arc (t ≤ T_h), in its order of operations, with the start's rotation kept.
-  const maneuver& u = samples_.maneuvers[m];
-  const double s = travelled_distance(ego_.speed, u.acceleration, t, ego_.limits.speed_cap);
-  const vec2 local = arc_point(u.curvature, s);
-  return {ego_.pose.position + rotated(local, start_rotation_.x, start_rotation_.y), ego_.pose.heading + u.curvature * s};
+  // maneuver_pose with the start's rotation kept (to_world's arithmetic).
+  const pose local = maneuver_local_pose(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
+  return {ego_.pose.position + rotated(local.position, start_rotation_.x, start_rotation_.y),
+          ego_.pose.heading + local.heading};
 }
 
 ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
@@ -192,12 +191,11 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         }
         // Apart (separation > 0): the signed distance is the corner distance.
         d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
-      } else if (shapes_ == shape_pair::rectangle_disc) {
-        d = signed_distance(placed_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y}, o.position,
-                            obstacle_radius_) -
-            margin;
-      } else {
+      } else if (shapes_ == shape_pair::general) {
+        // The obstacle's footprint is placed once per time, not once per sample.
         d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
+      } else {
+        d = distance(p.position, p.direction, o) - margin;
       }
       ++work_.distance_evaluations;
       if (d <= 0.0) {

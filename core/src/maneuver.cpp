@@ -44,8 +44,7 @@ vec2 arc_point(double curvature, double arc_length) {
   return {arc_length * sinc(turn), arc_length * versine_ratio(turn)};
 }
 
-pose maneuver_pose(const pose& start, double initial_speed, const maneuver& u, double t,
-                   double horizon, double speed_cap) {
+pose maneuver_local_pose(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap) {
   const double arc_time = std::min(t, horizon);
   const double s = travelled_distance(initial_speed, u.acceleration, arc_time, speed_cap);
   vec2 local = arc_point(u.curvature, s);
@@ -54,7 +53,13 @@ pose maneuver_pose(const pose& start, double initial_speed, const maneuver& u, d
     const double straight = speed_after(initial_speed, u.acceleration, horizon, speed_cap) * (t - horizon);
     local = local + straight * unit_vector(local_heading);
   }
-  return {to_world(start, local), start.heading + local_heading};
+  return {local, local_heading};
+}
+
+pose maneuver_pose(const pose& start, double initial_speed, const maneuver& u, double t,
+                   double horizon, double speed_cap) {
+  const pose local = maneuver_local_pose(initial_speed, u, t, horizon, speed_cap);
+  return {to_world(start, local.position), start.heading + local.heading};
 }
 
 maneuver clamp_to_limits(const maneuver& u, double initial_speed, const ego_limits& limits) {

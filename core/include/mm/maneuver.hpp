@@ -45,6 +45,10 @@ double travelled_distance(double initial_speed, double acceleration, double t, d
 /// (x forward): (sin(κs)/κ, (1 − cos κs)/κ), the straight segment (s, 0) when κ = 0 (§3).
 vec2 arc_point(double curvature, double arc_length);
 
+/// `maneuver_pose` in the frame of the start (x forward, heading 0 at t = 0): position [m] and
+/// heading [rad] relative to the start.
+pose maneuver_local_pose(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap);
+
 /// Pose at time t [s] of the ego executing `u` from `start` at speed v0 (spec §5): the arc of `u`
 /// on [0, horizon], then straight ahead at the speed and heading reached at `horizon` [T_h].
 pose maneuver_pose(const pose& start, double initial_speed, const maneuver& u, double t,
