@@ -17,7 +17,6 @@
 #include <cstdlib>
 #include <map>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "mm/scenario_file/loader.hpp"
@@ -67,10 +66,7 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  // Planning threads change nothing in the run (run_options::jobs), only how long it takes.
-  mm::sim::run_options run;
-  run.jobs = std::max(1U, std::thread::hardware_concurrency());
-  mm::sim::simulation sim(mm::scenario_file::load(argv[1], options).scenario, run);
+  mm::sim::simulation sim(mm::scenario_file::load(argv[1], options).scenario, mm::capture::every_core());
   std::map<std::size_t, strongest> by_interacting;
   std::size_t plans = 0;
   if (!summary) std::printf("t_s,agent,obstacles,relevant,interacting,min_room,mode,cpu_us\n");

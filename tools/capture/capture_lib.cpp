@@ -17,6 +17,12 @@ double smallest_room(const plan_result& result) {
   return room;
 }
 
+sim::run_options every_core() {
+  sim::run_options run;
+  run.jobs = std::max(1U, std::thread::hardware_concurrency());
+  return run;
+}
+
 interaction_count count_interactions(const plan_input& input) {
   interaction_count count;
   const plan_result all = plan(input);
@@ -33,10 +39,7 @@ interaction_count count_interactions(const plan_input& input) {
 plan_input replay(const capture_point& point) {
   scenario_file::load_options options;
   options.overrides = point.overrides;
-  // Planning threads change nothing in the run (run_options::jobs), only how long the replay takes.
-  sim::run_options run;
-  run.jobs = std::max(1U, std::thread::hardware_concurrency());
-  sim::simulation sim(scenario_file::load(point.scenario, options).scenario, run);
+  sim::simulation sim(scenario_file::load(point.scenario, options).scenario, every_core());
   const auto id = sim.find(point.agent);
   if (!id || *id >= sim.planning_vehicle_count()) {
     throw std::runtime_error(point.scenario + ": no planning vehicle called " + point.agent);

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mm/planner.hpp"
+#include "mm/sim/simulation.hpp"
 
 namespace mm::capture {
 
@@ -15,6 +16,10 @@ struct interaction_count {
   std::size_t relevant = 0;     ///< kept by the planner: can reach some maneuver within T_c (spec §9)
   std::size_t interacting = 0;  ///< planned alone, it takes room from the ego under some forecast time
 };
+
+/// Simulation options that plan on every core: planning threads change nothing in a run
+/// (`sim::run_options::jobs`), only how long it takes.
+sim::run_options every_core();
 
 /// Counts the relevant and the interacting obstacles of `input` (one extra plan per relevant obstacle).
 interaction_count count_interactions(const plan_input& input);
