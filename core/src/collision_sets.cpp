@@ -145,6 +145,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   }
   const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
   sets_.assign(slots, clearance_set(samples, cap));
+  below_cap_.assign(slots, 0);
+  floor_.assign(slots, {});
   exact_.assign(slots, std::vector<std::uint8_t>(samples, 0));
   prefix_.assign(samples, prefix_walk{});
   golden_.assign(samples, {});
@@ -216,6 +218,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     for (std::size_t m = 0; m < samples; ++m) {
       if (walk[m].negative) {
         sets_[i][m] = -cap;
+        ++below_cap_[i];
       } else if (walk[m].low) {
         exact(i, m);
       }
@@ -313,9 +316,51 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   }
   c = std::clamp(c, -cap_, cap_);
   ++work_.exact_values;
+  if (sets_[i][m] >= cap_ && c < cap_) ++below_cap_[i];
   sets_[i][m] = c;
   exact_[i][m] = 1;
   return c;
+}
+
+double clearance_field::exact_below(std::size_t forecast, std::size_t m, double ceiling) {
+  const std::size_t i = slot(forecast);
+  if (exact_[i][m] || ceiling >= cap_) return exact(forecast, m);
+  const std::size_t count = sweep_.times().size();
+  const double step = sweep_.window().time_step;
+  const double margin = sweep_.window().margin;
+  const double centre = centre_rate(m);
+  const double rate = distance_rate(m);
+  // Sampled values at or above this keep every value in between, and so the refined minimum,
+  // at or above the ceiling: between samples the signed distance falls by at most L·step/2.
+  const double limit = ceiling + 0.5 * rate * step * (1.0 + 1e-9) + 1e-12;
+  if (limit >= walk_cap_) return exact(forecast, m);  // the exact walk prunes as much
+  std::vector<double>& floor = floor_[i];
+  if (!floor.empty() && floor[m] >= ceiling) return floor[m];
+  std::size_t k = 0;
+  // A walk over the shared times t ≤ τ_i (kept from an earlier exact value) bounds them all.
+  const prefix_walk& prefix = prefix_[m];
+  const std::size_t shared = first_straight_[i];
+  if (shared > 0 && prefix.until >= shared) {
+    if (std::min(prefix.minimum.value, walk_cap_) < limit) return exact(forecast, m);
+    k = shared;
+  }
+  while (k < count) {
+    const obstacle_at o = obstacle_pose(i, k);
+    const ego_sweep::placement p = sweep_.at(k, m);
+    ++work_.bound_checks;
+    const double bound = norm(p.position - o.position) - reach_ - margin;
+    if (bound >= limit) {
+      k = first_possible(k, bound - limit, centre, step);
+      continue;
+    }
+    const double d = distance(p.position, p.direction, o) - margin;
+    ++work_.distance_evaluations;
+    if (d < limit) return exact(forecast, m);
+    k = first_possible(k, d - limit, rate, step);
+  }
+  if (floor.empty()) floor.assign(sweep_.sample_count(), -cap_);
+  floor[m] = ceiling;
+  return ceiling;
 }
 
 void clearance_field::make_all_exact() {

@@ -90,8 +90,17 @@ double maneuverability_index(const displacement_set& set, std::span<const double
       const std::size_t lower = ia * columns + ik;
       const std::size_t upper = lower + columns;
       total += w;
-      // x along κ, y along a.
-      safe += w * positive_fraction(clearance[lower], clearance[lower + 1], clearance[upper], clearance[upper + 1]);
+      // x along κ, y along a. Most cells have one sign at every corner: decided here without the call.
+      const double c00 = clearance[lower];
+      const double c10 = clearance[lower + 1];
+      const double c01 = clearance[upper];
+      const double c11 = clearance[upper + 1];
+      const int positive_corners = (c00 > 0.0) + (c10 > 0.0) + (c01 > 0.0) + (c11 > 0.0);
+      if (positive_corners == 4) {
+        safe += w;
+      } else if (positive_corners != 0) {
+        safe += w * positive_fraction(c00, c10, c01, c11);
+      }
     }
   }
   if (total <= 0.0) return 1.0;

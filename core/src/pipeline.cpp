@@ -123,7 +123,7 @@ class evaluator {
     const bool from_cap = !reference_ && !parts.empty();
     clearance_set c(samples_.size(), from_cap ? clearance_cap : std::numeric_limits<double>::infinity());
     for (const auto& [j, i] : parts) {
-      if (from_cap && fields_[j].inert()) continue;
+      if (from_cap && (fields_[j].inert() || fields_[j].all_at_cap(i))) continue;
       const clearance_set& part = reference_ ? reference_sets_[j][i] : fields_[j].set(i);
       for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], part[m]);
     }
@@ -131,52 +131,69 @@ class evaluator {
     return c;
   }
 
-  /// Replaces the placeholders (±cap) at the corners of sign-changing cells of both families'
-  /// grids by the exact minimum over the obstacles.
+  /// Replaces the placeholders (±cap) by the exact minimum over the obstacles wherever the
+  /// interpolating indices read a value: at both ends of every grid edge whose ends differ in sign,
+  /// and at the four corners of saddle cells (whose centre value decides them). Elsewhere a cell
+  /// reads signs only (`positive_fraction`).
   void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
-    std::vector<std::uint8_t> done(c.size(), 0);
-    const auto fix = [&](std::size_t m) {
-      if (done[m]) return;
-      done[m] = 1;
-      const bool positive = c[m] > 0.0;
-      double value = clearance_cap;
-      for (const auto& [j, i] : parts) {
-        clearance_field& field = fields_[j];
-        if (field.inert()) continue;
-        double part = field.set(i)[m];
-        // A negative minimum is decided by the obstacles that collide; a positive one by all.
-        if (!field.is_exact(i, m) && (positive || part <= 0.0)) part = field.exact(i, m);
-        value = std::min(value, part);
-      }
-      c[m] = value;
-    };
+    positive_.resize(c.size());
+    std::size_t positives = 0;
+    for (std::size_t m = 0; m < c.size(); ++m) {
+      positive_[m] = c[m] > 0.0 ? 1 : 0;
+      positives += positive_[m];
+    }
+    if (positives == 0 || positives == c.size()) return;  // one sign everywhere: nothing is read
+    read_.assign(c.size(), 0);
+    const std::uint8_t* positive = positive_.data();
+    std::uint8_t* read = read_.data();
     for (const family f : {family::brake, family::accelerate}) {
       const displacement_set& set = samples_.set(f);
       if (set.degenerate) continue;
       const std::size_t first = samples_.grid(f).begin;
       const std::size_t columns = set.curvature_count;
-      const auto sign_changes = [&](std::initializer_list<std::size_t> corners) {
-        bool any_positive = false;
-        bool any_other = false;
-        for (const std::size_t m : corners) (c[m] > 0.0 ? any_positive : any_other) = true;
-        return any_positive && any_other;
-      };
-      for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
-        if (columns == 1) {
-          const std::size_t lower = first + ia;
-          if (sign_changes({lower, lower + 1})) {
-            fix(lower);
-            fix(lower + 1);
-          }
-          continue;
+      const std::size_t rows = set.acceleration_count;
+      for (std::size_t ia = 0; ia < rows; ++ia) {
+        const std::size_t row = first + ia * columns;
+        for (std::size_t m = row; m + 1 < row + columns; ++m) {
+          if (positive[m] != positive[m + 1]) read[m] = read[m + 1] = 1;
         }
-        for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
-          const std::size_t lower = first + ia * columns + ik;
-          const std::size_t upper = lower + columns;
-          if (sign_changes({lower, lower + 1, upper, upper + 1})) {
-            for (const std::size_t m : {lower, lower + 1, upper, upper + 1}) fix(m);
+        if (ia + 1 == rows) continue;
+        for (std::size_t m = row; m < row + columns; ++m) {
+          const std::size_t up = m + columns;
+          if (positive[m] != positive[up]) read[m] = read[up] = 1;
+          // A saddle cell: its centre value (all four corners) decides it.
+          if (m + 1 < row + columns && positive[m] == positive[up + 1] && positive[m + 1] == positive[up] &&
+              positive[m] != positive[m + 1]) {
+            read[m] = read[m + 1] = read[up] = read[up + 1] = 1;
           }
         }
+      }
+    }
+    for (std::size_t m = 0; m < c.size(); ++m) {
+      if (!read_[m]) continue;
+      if (c[m] > 0.0) {
+        // Positive: every obstacle is positive here and the minimum needs all of them; the exact
+        // values known first, then the others only where they can go below what is known.
+        double value = clearance_cap;
+        for (const auto& [j, i] : parts) {
+          const clearance_field& field = fields_[j];
+          if (!field.inert() && field.is_exact(i, m)) value = std::min(value, field.set(i)[m]);
+        }
+        for (const auto& [j, i] : parts) {
+          clearance_field& field = fields_[j];
+          if (!field.inert() && !field.is_exact(i, m)) value = std::min(value, field.exact_below(i, m, value));
+        }
+        c[m] = value;
+      } else {
+        // Negative: decided by the obstacles that collide here.
+        double value = clearance_cap;
+        for (const auto& [j, i] : parts) {
+          clearance_field& field = fields_[j];
+          if (field.inert()) continue;
+          const double part = field.set(i)[m];
+          value = std::min(value, field.is_exact(i, m) || part > 0.0 ? part : field.exact(i, m));
+        }
+        c[m] = value;
       }
     }
   }
@@ -186,6 +203,8 @@ class evaluator {
   std::vector<std::vector<clearance_set>> reference_sets_;
   std::deque<clearance_field> fields_;
   std::map<std::vector<std::size_t>, double> rooms_;
+  std::vector<std::uint8_t> positive_;  ///< scratch of make_read_values_exact: [m] is positive
+  std::vector<std::uint8_t> read_;      ///< scratch of make_read_values_exact: [m] needs a value
 };
 
 }  // namespace

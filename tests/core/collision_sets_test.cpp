@@ -54,6 +54,49 @@ TEST(collision_sets, fast_clearances_equal_the_clamped_brute_force_ones_bit_for_
   }
 }
 
+TEST(collision_sets, a_bounded_query_is_exact_below_its_ceiling_and_never_hides_a_lower_clearance) {
+  std::mt19937_64 rng(testing::property_seed() + 5);
+  const std::size_t count = testing::property_count(12);
+  const std::vector<double> taus = forecast_times(planner_config{});
+  constexpr double cap = 2.0;
+  std::size_t below = 0;
+  std::size_t above = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    plan_input in = testing::random_scene(rng, {2, trial % 2 == 1});
+    in.config.safety_margin = trial % 3 == 0 ? 0.4 : 0.0;
+    in.config.resolution = {7, 9};
+    const prepared p = prepare(in, 0.05);
+    const ego_sweep sweep(in.ego, p.samples, p.window);
+    for (const forecast_obstacle& obstacle : p.obstacles) {
+      const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
+      clearance_field field(sweep, obstacle, taus, cap);
+      for (std::size_t i = 0; i < taus.size(); ++i) {
+        for (std::size_t m = 0; m < p.samples.size(); ++m) {
+          const double truth = std::clamp(brute[i][m], -cap, cap);
+          // Ceilings around the true value, asked in an order that exercises the remembered floors.
+          for (const double ceiling : {truth + 0.3, truth - 0.3, truth + 1e-6, truth - 1e-6, 0.5}) {
+            const double bounded = field.exact_below(i, m, ceiling);
+            if (truth < ceiling) {
+              ASSERT_EQ(bounded, truth) << "tau " << taus[i] << " sample " << m << " ceiling " << ceiling << "\n"
+                                        << testing::describe(in);
+              ++below;
+            } else {
+              ASSERT_GE(bounded, ceiling) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
+              ASSERT_TRUE(bounded == truth || !field.is_exact(i, m));
+              ++above;
+            }
+          }
+        }
+        const bool none_below_cap =
+            std::all_of(field.set(i).begin(), field.set(i).end(), [](double c) { return c >= cap; });
+        ASSERT_EQ(field.all_at_cap(i), none_below_cap) << "tau " << taus[i] << "\n" << testing::describe(in);
+      }
+    }
+  }
+  EXPECT_GT(below, 0u);
+  EXPECT_GT(above, 0u);
+}
+
 TEST(collision_sets, clearance_is_negative_for_every_sampled_collision_and_finds_most_contacts_between_samples) {
   std::mt19937_64 rng(testing::property_seed() + 17);
   const std::size_t count = testing::property_count(12);

@@ -129,6 +129,14 @@ class clearance_field {
   bool is_exact(std::size_t i, std::size_t m) const { return exact_[slot(i)][m] != 0; }
   /// The clearance of sample m with forecast time i, equal to the clamped brute-force one.
   double exact(std::size_t i, std::size_t m);
+  /// `exact(i, m)` when that can be below `ceiling` [m]; otherwise a value ≥ `ceiling` (then
+  /// `exact(i, m)` ≥ `ceiling` too), found by a walk that stops looking at a sample time once it
+  /// is provably ≥ ceiling + L·step/2. What a minimum over obstacles needs from an obstacle that
+  /// cannot lower it.
+  double exact_below(std::size_t i, std::size_t m, double ceiling);
+  /// True when no entry of forecast time i's set is below the cap: the obstacle cannot lower a
+  /// minimum over obstacles that starts from the cap.
+  bool all_at_cap(std::size_t i) const { return below_cap_[slot(i)] == 0; }
   /// True when the obstacle stays farther than the cap from every sample at every time under
   /// every forecast time: every clearance is exactly +cap, so the obstacle changes nothing.
   bool inert() const { return inert_; }
@@ -197,6 +205,8 @@ class clearance_field {
   double obstacle_radius_ = 0.0;  ///< of the obstacle disc [m]
   work work_;
   std::vector<clearance_set> sets_;
+  std::vector<std::size_t> below_cap_;  ///< [slot]: entries of the set below the cap
+  std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;
   std::vector<prefix_walk> prefix_;                                    ///< [m]
   std::vector<std::vector<std::pair<std::size_t, double>>> golden_;  ///< [m]: (argmin, golden-section minimum) on shared times
