@@ -75,6 +75,8 @@ double maneuverability_index(const displacement_set& set, std::span<const double
     for (const double c : clearance) safe += c > 0.0 ? 1 : 0;
     return static_cast<double>(safe) / static_cast<double>(clearance.size());
   }
+  // Safe everywhere: every cell adds its whole weight to both sums, so the index is exactly 1.
+  if (std::all_of(clearance.begin(), clearance.end(), [](double c) { return c > 0.0; })) return 1.0;
   const std::size_t columns = set.curvature_count;
   double total = 0.0;
   double safe = 0.0;

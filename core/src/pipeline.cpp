@@ -136,14 +136,21 @@ class evaluator {
   /// and at the four corners of saddle cells (whose centre value decides them). Elsewhere a cell
   /// reads signs only (`positive_fraction`).
   void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
-    positive_.resize(c.size());
+    const std::size_t size = c.size();
+    positive_.resize(size);
     std::size_t positives = 0;
-    for (std::size_t m = 0; m < c.size(); ++m) {
-      positive_[m] = c[m] > 0.0 ? 1 : 0;
-      positives += positive_[m];
+    {
+      // Raw pointers: a store through std::uint8_t may alias anything, vector members included.
+      const double* value = c.data();
+      std::uint8_t* sign = positive_.data();
+      for (std::size_t m = 0; m < size; ++m) {
+        const bool p = value[m] > 0.0;
+        sign[m] = p ? 1 : 0;
+        positives += p ? 1 : 0;
+      }
     }
-    if (positives == 0 || positives == c.size()) return;  // one sign everywhere: nothing is read
-    read_.assign(c.size(), 0);
+    if (positives == 0 || positives == size) return;  // one sign everywhere: nothing is read
+    read_.assign(size, 0);
     const std::uint8_t* positive = positive_.data();
     std::uint8_t* read = read_.data();
     for (const family f : {family::brake, family::accelerate}) {
