@@ -209,6 +209,38 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     }
   };
   std::vector<sign_state> shared(samples);
+  if (slots > 1) {
+    // One pass for every forecast time at once: a disc holding the obstacle's reference point under
+    // every τ_i at t_k bounds the distance to each of them from below, and the smallest of those
+    // distances changes no faster than the centre rate. A sample is not looked at by the walks
+    // below before the first time at which it can come within its threshold under some τ_i.
+    for (sign_state& state : shared) state.next = std::numeric_limits<std::size_t>::max();
+    std::vector<std::size_t> next(samples, 0);
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      vec2 low = obstacle_pose(0, k).position;
+      vec2 high = low;
+      for (std::size_t i = 1; i < slots; ++i) {
+        const vec2 p = obstacle_pose(i, k).position;
+        low = {std::min(low.x, p.x), std::min(low.y, p.y)};
+        high = {std::max(high.x, p.x), std::max(high.y, p.y)};
+      }
+      const vec2 centre = 0.5 * (low + high);
+      const double radius = 0.5 * norm(high - low) * (1.0 + 1e-12) + 1e-9;
+      if (norm(centre - start) - radius - sweep.reach_radius(k) - reach_ - margin > threshold) continue;
+      for (std::size_t m = 0; m < samples; ++m) {
+        if (next[m] > k) continue;
+        const double own_threshold = 0.5 * distance_rate(m) * step * (1.0 + 1e-9) + 1e-12;
+        ++work_.bound_checks;
+        const double bound = norm(sweep.at(k, m).position - centre) - radius - reach_ - margin;
+        if (bound > own_threshold) {
+          next[m] = first_possible(k, bound - own_threshold, centre_rate(m), step);
+        } else {
+          shared[m].next = k;
+          next[m] = std::numeric_limits<std::size_t>::max();
+        }
+      }
+    }
+  }
   std::vector<sign_state> walk;
   std::size_t shared_until = 0;
   for (std::size_t i = 0; i < slots; ++i) {
