@@ -179,13 +179,10 @@ class evaluator {
     for (std::size_t m = 0; m < c.size(); ++m) {
       if (!read_[m]) continue;
       if (c[m] > 0.0) {
-        // Positive: every obstacle is positive here and the minimum needs all of them; the exact
-        // values known first, then the others only where they can go below what is known.
-        double value = clearance_cap;
-        for (const auto& [j, i] : parts) {
-          const clearance_field& field = fields_[j];
-          if (!field.inert() && field.is_exact(i, m)) value = std::min(value, field.set(i)[m]);
-        }
+        // Positive: every obstacle is positive here and the minimum needs all of them. The
+        // placeholders are +cap, so c[m] is already the minimum of the exact values known; the
+        // others are needed only where they can go below it.
+        double value = c[m];
         for (const auto& [j, i] : parts) {
           clearance_field& field = fields_[j];
           if (!field.inert() && !field.is_exact(i, m)) value = std::min(value, field.exact_below(i, m, value));
