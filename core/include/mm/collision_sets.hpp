@@ -107,7 +107,8 @@ class ego_sweep {
 /// clearance is always right; its *value* is computed on demand (`exact`) and is then equal, bit
 /// for bit, to `clearances_reference` clamped to ±cap. Until then a positive clearance reads
 /// +cap and a negative one −cap. The interpolating indices (`maneuverability_index`) use values
-/// only in cells whose corners differ in sign, so a caller makes those corners exact first.
+/// only at the ends of grid edges whose ends differ in sign (and at saddle cells), so a caller
+/// makes those exact first.
 ///
 /// How the signs are found cheaply, each step exact:
 /// - forecasts agree up to τ, so the walk over t ≤ τ_i is done once and shared by larger τ;
