@@ -40,7 +40,7 @@ plan_result invalid(std::string error) {
 /// The clearances of every relevant obstacle under an assignment of forecast times, and how to
 /// turn them into indices. The reference holds ±1 per sample (collides or not) and counts; the fast
 /// path holds a `clearance_field` per obstacle and makes exact only the values the interpolating
-/// indices read: the corners of cells whose corners differ in sign.
+/// indices read (`make_read_values_exact`).
 class evaluator {
  public:
   evaluator(const maneuver_samples& samples, bool reference) : samples_(samples), reference_(reference) {}
@@ -55,15 +55,16 @@ class evaluator {
   /// Sample-wise minimum over the obstacles, obstacle j at forecast index index[j] (the union of
   /// the [CSS]); on the fast path exact wherever the indices read it.
   clearance_set combined(std::span<const std::size_t> index) {
-    std::vector<std::pair<std::size_t, std::size_t>> parts;
-    for (std::size_t j = 0; j < index.size(); ++j) parts.emplace_back(j, index[j]);
-    return combined_parts(parts);
+    clearance_set c;
+    combine_into(index, c);
+    return c;
   }
 
   /// max(MI−, MI+) with obstacle j alone at forecast index i.
   double room_alone(std::size_t j, std::size_t i) {
     const std::pair<std::size_t, std::size_t> part{j, i};
-    return room(combined_parts(std::span(&part, 1)));
+    combined_parts(std::span(&part, 1), scratch_set_);
+    return room(scratch_set_);
   }
 
   /// MI− and MI+ (spec §6): the reference counts safe samples' areas; the fast path interpolates.
@@ -84,15 +85,17 @@ class evaluator {
   /// (inert, or not turning) count as forecast index 0, so assignments that differ only there are
   /// computed once.
   double room_of(std::span<const std::size_t> index) {
-    std::vector<std::size_t> key(index.begin(), index.end());
+    std::vector<std::size_t>& key = scratch_key_;
+    key.assign(index.begin(), index.end());
     if (!reference_) {
       for (std::size_t j = 0; j < key.size(); ++j) {
         if (fields_[j].inert() || fields_[j].forecast_independent()) key[j] = 0;
       }
     }
     if (const auto it = rooms_.find(key); it != rooms_.end()) return it->second;
-    const double r = room(combined(index));
-    rooms_.emplace(std::move(key), r);
+    combine_into(index, scratch_set_);
+    const double r = room(scratch_set_);
+    rooms_.emplace(key, r);
     return r;
   }
 
@@ -116,19 +119,25 @@ class evaluator {
   }
 
  private:
-  /// The sample-wise minimum over `parts` (obstacle, forecast index).
-  clearance_set combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts) {
+  /// `combined` into `c`, with the parts list in a buffer kept between calls.
+  void combine_into(std::span<const std::size_t> index, clearance_set& c) {
+    scratch_parts_.clear();
+    for (std::size_t j = 0; j < index.size(); ++j) scratch_parts_.emplace_back(j, index[j]);
+    combined_parts(scratch_parts_, c);
+  }
+
+  /// The sample-wise minimum over `parts` (obstacle, forecast index), into `c`.
+  void combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
     // Fast-path values lie in [−cap, cap] and an inert field is +cap everywhere: starting from the
     // cap and skipping inert fields gives the same minimum.
     const bool from_cap = !reference_ && !parts.empty();
-    clearance_set c(samples_.size(), from_cap ? clearance_cap : std::numeric_limits<double>::infinity());
+    c.assign(samples_.size(), from_cap ? clearance_cap : std::numeric_limits<double>::infinity());
     for (const auto& [j, i] : parts) {
       if (from_cap && (fields_[j].inert() || fields_[j].all_at_cap(i))) continue;
       const clearance_set& part = reference_ ? reference_sets_[j][i] : fields_[j].set(i);
       for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], part[m]);
     }
     if (!reference_) make_read_values_exact(parts, c);
-    return c;
   }
 
   /// Replaces the placeholders (±cap) by the exact minimum over the obstacles wherever the
@@ -207,6 +216,9 @@ class evaluator {
   std::vector<std::vector<clearance_set>> reference_sets_;
   std::deque<clearance_field> fields_;
   std::map<std::vector<std::size_t>, double> rooms_;
+  std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
+  std::vector<std::size_t> scratch_key_;
+  clearance_set scratch_set_;
   std::vector<std::uint8_t> positive_;  ///< scratch of make_read_values_exact: [m] is positive
   std::vector<std::uint8_t> read_;      ///< scratch of make_read_values_exact: [m] needs a value
 };
