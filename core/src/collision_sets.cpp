@@ -153,7 +153,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
 
   // A sampled minimum above this refines to a positive clearance: between samples the signed
   // distance can fall by at most L·step/2 below the nearest sample.
-  const double threshold = 0.5 * distance_rate_ * step * (1.0 + 1e-9) + 1e-12;
+  const double threshold = half_step_change(distance_rate_);
   const double margin = window.margin;
   const vec2 start = sweep.reach_centre(0);
   bool near = false;
@@ -168,7 +168,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       sign_state& state = states[m];
       if (state.negative || state.next > k) continue;
       const double rate = distance_rate(m);
-      const double own_threshold = 0.5 * rate * step * (1.0 + 1e-9) + 1e-12;
+      const double own_threshold = half_step_change(rate);
       const double target = state.low ? 0.0 : own_threshold;
       const ego_sweep::placement p = sweep.at(k, m);
       ++work_.bound_checks;
@@ -229,7 +229,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       if (norm(centre - start) - radius - sweep.reach_radius(k) - reach_ - margin > threshold) continue;
       for (std::size_t m = 0; m < samples; ++m) {
         if (next[m] > k) continue;
-        const double own_threshold = 0.5 * distance_rate(m) * step * (1.0 + 1e-9) + 1e-12;
+        const double own_threshold = half_step_change(distance_rate(m));
         ++work_.bound_checks;
         const double bound = norm(sweep.at(k, m).position - centre) - radius - reach_ - margin;
         if (bound > own_threshold) {
@@ -364,7 +364,7 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   const double rate = distance_rate(m);
   // Sampled values at or above this keep every value in between, and so the refined minimum,
   // at or above the ceiling: between samples the signed distance falls by at most L·step/2.
-  const double limit = ceiling + 0.5 * rate * step * (1.0 + 1e-9) + 1e-12;
+  const double limit = ceiling + half_step_change(rate);
   if (limit >= walk_cap_) return exact(forecast, m);  // the exact walk prunes as much
   std::vector<double>& floor = floor_[i];
   if (!floor.empty() && floor[m] >= ceiling) return floor[m];

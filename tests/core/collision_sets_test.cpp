@@ -29,15 +29,22 @@ prepared prepare(const plan_input& in, double time_step) {
   return p;
 }
 
+/// Trial `trial` of the bit-for-bit tests: two obstacles, every other one turning, a margin in every
+/// third, a coarse grid.
+plan_input two_obstacle_scene(std::mt19937_64& rng, std::size_t trial) {
+  plan_input in = testing::random_scene(rng, {2, trial % 2 == 1});
+  in.config.safety_margin = trial % 3 == 0 ? 0.4 : 0.0;
+  in.config.resolution = {7, 9};
+  return in;
+}
+
 TEST(collision_sets, fast_clearances_equal_the_clamped_brute_force_ones_bit_for_bit) {
   std::mt19937_64 rng(testing::property_seed());
   const std::size_t count = testing::property_count(12);
   const std::vector<double> taus = forecast_times(planner_config{});
   constexpr double cap = 2.0;
   for (std::size_t trial = 0; trial < count; ++trial) {
-    plan_input in = testing::random_scene(rng, {2, trial % 2 == 1});
-    in.config.safety_margin = trial % 3 == 0 ? 0.4 : 0.0;
-    in.config.resolution = {7, 9};
+    const plan_input in = two_obstacle_scene(rng, trial);
     const prepared p = prepare(in, 0.05);
     const ego_sweep sweep(in.ego, p.samples, p.window);
     for (const forecast_obstacle& obstacle : p.obstacles) {
@@ -62,9 +69,7 @@ TEST(collision_sets, a_bounded_query_is_exact_below_its_ceiling_and_never_hides_
   std::size_t below = 0;
   std::size_t above = 0;
   for (std::size_t trial = 0; trial < count; ++trial) {
-    plan_input in = testing::random_scene(rng, {2, trial % 2 == 1});
-    in.config.safety_margin = trial % 3 == 0 ? 0.4 : 0.0;
-    in.config.resolution = {7, 9};
+    const plan_input in = two_obstacle_scene(rng, trial);
     const prepared p = prepare(in, 0.05);
     const ego_sweep sweep(in.ego, p.samples, p.window);
     for (const forecast_obstacle& obstacle : p.obstacles) {

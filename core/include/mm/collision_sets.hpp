@@ -116,6 +116,8 @@ class ego_sweep {
 ///   clearance computed minus the largest relative point speed L times the time elapsed — shows it
 ///   stays above the threshold that matters: L·step/2 (above it, the refined minimum cannot reach
 ///   0), then 0 once it has come that close;
+/// - before the per-τ walks, one pass against a disc holding the obstacle under every τ_i tells
+///   each sample the first time it can come within its threshold under any of them;
 /// - a sample that comes within L·step/2 of contact without touching at a sample time is refined
 ///   (`exact`), because only the refined minimum decides its sign.
 /// Holds mutable caches (the exact values): one field must not be used by two threads at once.
@@ -174,6 +176,9 @@ class clearance_field {
   double distance(vec2 position, vec2 direction, const obstacle_at& o) const;
   /// Rates of sample m: of its reference point's distance and of the signed distance [m/s].
   double centre_rate(std::size_t m) const { return sweep_.sample_speed(m) + obstacle_.motion.speed; }
+  /// Most a quantity changing at `rate` [m/s] can fall between a time and the nearest sample time
+  /// [m]: rate · step / 2, rounded up.
+  double half_step_change(double rate) const { return 0.5 * rate * sweep_.window().time_step * (1.0 + 1e-9) + 1e-12; }
   double distance_rate(std::size_t m) const { return sweep_.sample_point_speed(m) + obstacle_turn_speed_; }
 
   /// The exact walk of one sample over the shared times t ≤ τ (the same for every larger τ).
