@@ -304,11 +304,11 @@ double clearance_field::refined(std::size_t i, std::size_t m, const running_mini
     for (const auto& [argmin, golden] : golden_[m]) {
       if (argmin == k) return std::min(r.value, golden);
     }
-    const double golden = refined_minimum(sweep_.times(), k, at, std::numeric_limits<double>::infinity());
+    const double golden = refined_minimum(sweep_.times(), k, at, r.at_argmin);
     golden_[m].emplace_back(k, golden);
     return std::min(r.value, golden);
   }
-  return refined_minimum(sweep_.times(), k, at, r.value);
+  return std::min(r.value, refined_minimum(sweep_.times(), k, at, r.at_argmin));
 }
 
 double clearance_field::exact(std::size_t forecast, std::size_t m) {
@@ -422,7 +422,7 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
       const auto at = [&](double t) { return clearance_at(ego, samples.maneuvers[m], obstacle, tau, t, window); };
       running_minimum r;
       for (std::size_t k = 0; k < times.size(); ++k) r.update(at(times[k]), k);
-      clearance[m] = refined_minimum(times, r.argmin, at, r.value);
+      clearance[m] = std::min(r.value, refined_minimum(times, r.argmin, at, r.at_argmin));
     }
     result.push_back(std::move(clearance));
   }
