@@ -68,24 +68,28 @@ struct running_minimum {
   }
 };
 
-/// Time resolution [s] of `refined_minimum`: the search stops once the minimum is bracketed to
-/// about this. A kink (a corner passing a corner) can leave up to relative speed × this [m].
-inline constexpr double refinement_time_tolerance = 2e-4;
+/// Evaluation points of `refined_minimum` lie on a grid of this many steps across its bracket.
+inline constexpr double refinement_grid = 512.0;
 
 /// The continuous-time minimum of a signed clearance sampled at `times`, refined around the argmin
 /// `k` of its samples (`running_minimum`), where it takes `at_sample` = at(t_k) [m]: Brent's search
 /// for the minimum of `at(t)` on [t_{k−1}, t_{k+1}] — a parabola through the three best points
 /// where it moves the bracket fast enough, a golden-section step where it does not — until the
-/// minimum is bracketed to `refinement_time_tolerance`, at most `max_evaluations` calls. The result
-/// is the smallest value seen, `at_sample` included: a value the clearance really takes, so never
-/// below the true minimum. At the window's ends, `at_sample`.
+/// minimum is bracketed to a grid step, at most `max_evaluations` calls. Every point is rounded to
+/// a grid of `refinement_grid` steps across the bracket, so that two scenes equal up to rounding
+/// (one moved or mirrored) are evaluated at the same times and refine to the same value. The
+/// result is the smallest value seen, `at_sample` included: a value the clearance really takes, so
+/// never below the true minimum. At the window's ends, `at_sample`.
 template <class At>
 double refined_minimum(std::span<const double> times, std::size_t k, At&& at, double at_sample,
                        int max_evaluations = 16) {
   if (k == 0 || k + 1 >= times.size()) return at_sample;
   constexpr double golden = 0.3819660112501051;  // (3 − √5)/2
-  constexpr double tolerance = refinement_time_tolerance;
-  double lo = times[k - 1];
+  const double origin = times[k - 1];
+  const double grid = (times[k + 1] - origin) / refinement_grid;
+  const double tolerance = grid;
+  const auto on_grid = [&](double t) { return origin + std::round((t - origin) / grid) * grid; };
+  double lo = origin;
   double hi = times[k + 1];
   // x: best point so far; w: second best; v: the previous w. step: the last move; older: the one before.
   double x = times[k];
@@ -121,7 +125,9 @@ double refined_minimum(std::span<const double> times, std::size_t k, At&& at, do
       older = (x < mid ? hi : lo) - x;
       step = golden * older;
     }
-    const double u = std::abs(step) >= tolerance ? x + step : x + (step > 0.0 ? tolerance : -tolerance);
+    double u = on_grid(std::abs(step) >= tolerance ? x + step : x + (step > 0.0 ? tolerance : -tolerance));
+    if (u == x) u = on_grid(x + (step > 0.0 ? grid : -grid));
+    if (u <= lo || u >= hi) break;
     const double fu = at(u);
     if (fu <= fx) {
       (u < x ? hi : lo) = x;
