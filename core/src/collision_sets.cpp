@@ -35,9 +35,8 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
                          {std::cos(heading), std::sin(heading)}});
   }
   for (const maneuver& u : samples.maneuvers) {
-    const double top = std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
-    sample_speed_.push_back(top);
-    sample_point_speed_.push_back(top * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape)));
+    sample_speed_.push_back(std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap)));
+    sample_point_speed_.push_back(mm::largest_point_speed(ego, u, horizon));
   }
   known_.assign(times_.size() * sample_count_, 0);
   placements_ = std::make_unique_for_overwrite<stored[]>(times_.size() * sample_count_);
@@ -80,25 +79,57 @@ void ego_sweep::fill(std::size_t k, std::size_t m) const {
   known_[index] = 1;
 }
 
+double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon) {
+  const double cap = ego.limits.speed_cap;
+  const double top = std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
+  return top * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
+}
+
+double largest_point_speed(const forecast_obstacle& obstacle) {
+  return obstacle.motion.speed + std::abs(obstacle.motion.yaw_rate) * bounding_radius(obstacle.shape);
+}
+
+double refinement_threshold(double rate, double time_step) { return 0.5 * rate * time_step * (1.0 + 1e-9) + 1e-12; }
+
 namespace {
 
 /// First time index after k at which a quantity `gap` above the target, changing at most at
-/// `rate`, could reach the target.
+/// `rate`, could reach the target (k + 1 when it is not above).
 std::size_t first_possible(std::size_t k, double gap, double rate, double time_step) {
+  if (!(gap > 0.0)) return k + 1;
   if (rate <= 0.0) return std::numeric_limits<std::size_t>::max();
   const double steps = gap * (1.0 - 1e-9) / (rate * time_step);
   if (steps >= 1e9) return std::numeric_limits<std::size_t>::max();
   return k + static_cast<std::size_t>(steps) + 1;
 }
 
-/// Where a sample stands in the walk that decides its sign.
-struct sign_state {
-  std::size_t next = 0;  ///< first time index at which it can come closer than its threshold
-  bool low = false;      ///< came within the refinement threshold at a sample time
-  bool negative = false; ///< touched at a sample time
+}  // namespace
+
+struct clearance_field::sign_state {
+  std::size_t next = 0;   ///< first time index at which it can come within θ
+  bool low = false;       ///< came within θ at a sample time
+  bool negative = false;  ///< touched at a sample time, or a dip refined to ≤ 0
+  double minimum = std::numeric_limits<double>::infinity();  ///< smallest value looked at
+  dips low_dips;
 };
 
-}  // namespace
+clearance_field::dip clearance_field::visit(dips& d, std::size_t k, bool looked, double value, double theta) {
+  dip confirmed;
+  if (d.candidate != dips::no_index) {
+    // The candidate is a local minimum unless the time after it is lower; a time not looked at is > θ.
+    if (d.candidate + 1 < k || !looked || value >= d.candidate_value) confirmed = {d.candidate, d.candidate_value};
+    d.candidate = dips::no_index;
+  }
+  if (looked) {
+    if (value <= theta && (d.last == dips::no_index || d.last + 1 != k || value <= d.last_value)) {
+      d.candidate = k;
+      d.candidate_value = value;
+    }
+    d.last = k;
+    d.last_value = value;
+  }
+  return confirmed;
+}
 
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                  std::span<const double> forecast_times, double cap)
@@ -113,7 +144,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   walk_cap_ = cap + distance_rate_ * step / 2.0;
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius;
   centre_rate_ = sweep.largest_speed() + motion.speed;
-  obstacle_turn_speed_ = motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
+  obstacle_turn_speed_ = largest_point_speed(obstacle);
   if (const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape)) {
     ego_half_ = {ego_shape->length / 2.0, ego_shape->width / 2.0};
     if (const auto* r = std::get_if<rectangle>(&obstacle.shape)) {
@@ -153,11 +184,20 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
 
   // A sampled minimum above this refines to a positive clearance: between samples the signed
   // distance can fall by at most L·step/2 below the nearest sample.
-  const double threshold = half_step_change(distance_rate_);
+  const double threshold = refinement_threshold(distance_rate_, step);
   const double margin = window.margin;
   const vec2 start = sweep.reach_centre(0);
   bool near = false;
-  const auto advance = [&](std::size_t k, const obstacle_at& o, std::vector<sign_state>& states) {
+  // Refines a confirmed dip of sample m under forecast time i: one at or below 0 makes it negative.
+  const auto settle = [&](sign_state& state, std::size_t i, std::size_t m, const dip& d) {
+    if (d.at == dips::no_index) return;
+    const double value = refined_at(i, m, d.at, d.value);
+    state.low_dips.refined = std::min(state.low_dips.refined, value);
+    if (value <= 0.0) state.negative = true;
+  };
+  // Looks at every sample at time index k, the obstacle placed at `o`; dips confirmed here are
+  // refined under forecast time i (at times shared by every τ when k is).
+  const auto advance = [&](std::size_t k, const obstacle_at& o, std::vector<sign_state>& states, std::size_t i) {
     const double disc_gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
     if (disc_gap < walk_cap_) near = true;
     if (disc_gap > threshold) return;
@@ -167,45 +207,50 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     for (std::size_t m = 0; m < samples; ++m) {
       sign_state& state = states[m];
       if (state.negative || state.next > k) continue;
+      // Every time at which the clearance can be ≤ θ is looked at: a skipped one is > θ.
       const double rate = distance_rate(m);
-      const double own_threshold = half_step_change(rate);
-      const double target = state.low ? 0.0 : own_threshold;
+      const double theta = sample_threshold(m);
       const ego_sweep::placement p = sweep.at(k, m);
       ++work_.bound_checks;
       const double bound = norm(p.position - o.position) - reach_ - margin;
-      if (bound > target) {
-        state.next = first_possible(k, bound - target, centre_rate(m), step);
-        continue;
-      }
       double d = 0.0;
-      if (rectangles) {
+      bool looked = false;
+      if (bound > theta) {
+        state.next = first_possible(k, bound - theta, centre_rate(m), step);
+      } else if (rectangles) {
         // The separation along the face normals bounds the signed distance from below (it is the
         // signed distance when they overlap) and changes no faster than it.
         const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
         const double separation = face_separation(ego_rectangle, obstacle_rectangle) - margin;
-        if (separation > target) {
-          state.next = first_possible(k, separation - target, rate, step);
-          continue;
-        }
-        if (separation <= -margin) {
+        if (separation > theta) {
+          state.next = first_possible(k, separation - theta, rate, step);
+        } else if (separation <= -margin) {
           state.negative = true;
           continue;
+        } else {
+          // Apart (separation > 0): the signed distance is the corner distance.
+          d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
+          looked = true;
         }
-        // Apart (separation > 0): the signed distance is the corner distance.
-        d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
       } else if (shapes_ == shape_pair::general) {
         // The obstacle's footprint is placed once per time, not once per sample.
         d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
+        looked = true;
       } else {
         d = distance(p.position, p.direction, o) - margin;
+        looked = true;
       }
-      ++work_.distance_evaluations;
-      if (d <= 0.0) {
-        state.negative = true;
-        continue;
+      if (looked) {
+        ++work_.distance_evaluations;
+        if (d <= 0.0) {
+          state.negative = true;
+          continue;
+        }
+        state.minimum = std::min(state.minimum, d);
+        if (d <= theta) state.low = true;
+        state.next = first_possible(k, d - theta, rate, step);
       }
-      if (d <= own_threshold) state.low = true;
-      state.next = first_possible(k, d - (state.low ? 0.0 : own_threshold), rate, step);
+      settle(state, i, m, visit(state.low_dips, k, looked, d, theta));
     }
   };
   std::vector<sign_state> shared(samples);
@@ -229,7 +274,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       if (norm(centre - start) - radius - sweep.reach_radius(k) - reach_ - margin > threshold) continue;
       for (std::size_t m = 0; m < samples; ++m) {
         if (next[m] > k) continue;
-        const double own_threshold = half_step_change(distance_rate(m));
+        const double own_threshold = sample_threshold(m);
         ++work_.bound_checks;
         const double bound = norm(sweep.at(k, m).position - centre) - radius - reach_ - margin;
         if (bound > own_threshold) {
@@ -244,15 +289,23 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   std::vector<sign_state> walk;
   std::size_t shared_until = 0;
   for (std::size_t i = 0; i < slots; ++i) {
-    for (; shared_until < first_straight_[i]; ++shared_until) advance(shared_until, turning_[shared_until], shared);
+    for (; shared_until < first_straight_[i]; ++shared_until) advance(shared_until, turning_[shared_until], shared, i);
     walk = shared;
-    for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk);
+    for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk, i);
     for (std::size_t m = 0; m < samples; ++m) {
-      if (walk[m].negative) {
+      sign_state& state = walk[m];
+      // A dip still waiting for the time after it: every later time was > θ.
+      if (!state.negative) settle(state, i, m, finish(state.low_dips));
+      if (state.negative) {
         sets_[i][m] = -cap;
         ++below_cap_[i];
-      } else if (walk[m].low) {
-        exact(i, m);
+      } else if (state.low) {
+        // Every time ≤ θ was looked at and every dip refined: this is the clearance.
+        const double c = std::clamp(std::min(state.minimum, state.low_dips.refined), -cap, cap);
+        ++work_.exact_values;
+        if (c < cap) ++below_cap_[i];
+        sets_[i][m] = c;
+        exact_[i][m] = 1;
       }
     }
   }
@@ -296,19 +349,26 @@ double clearance_field::distance(vec2 position, vec2 direction, const obstacle_a
   return signed_distance(place(sweep_.ego().shape, position, direction), place(obstacle_.shape, o.position, o.direction));
 }
 
-double clearance_field::refined(std::size_t i, std::size_t m, const running_minimum& r) {
-  const std::size_t k = r.argmin;
+double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample) {
   const auto at = [&](double t) { return clearance_at_time(i, m, t); };
   // On the shared times (t ≤ τ) the search sees the same function for every τ: search once.
-  if (k + 1 < first_straight_[i]) {
-    for (const auto& [argmin, golden] : golden_[m]) {
-      if (argmin == k) return std::min(r.value, golden);
+  const bool shared = k + 1 < first_straight_[i];
+  if (shared) {
+    for (const auto& [argmin, value] : golden_[m]) {
+      if (argmin == k) return value;
     }
-    const double golden = refined_minimum(sweep_.times(), k, at, r.at_argmin);
-    golden_[m].emplace_back(k, golden);
-    return std::min(r.value, golden);
   }
-  return std::min(r.value, refined_minimum(sweep_.times(), k, at, r.at_argmin));
+  ++work_.refinements;
+  const double value = refined_minimum(sweep_.times(), k, at, at_sample);
+  if (shared) golden_[m].emplace_back(k, value);
+  return value;
+}
+
+clearance_field::dip clearance_field::finish(dips& d) {
+  dip pending;
+  if (d.candidate != dips::no_index) pending = {d.candidate, d.candidate_value};
+  d.candidate = dips::no_index;
+  return pending;
 }
 
 double clearance_field::exact(std::size_t forecast, std::size_t m) {
@@ -319,32 +379,49 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   const double margin = sweep_.window().margin;
   const double centre = centre_rate(m);
   const double rate = distance_rate(m);
-  // Looks at time index k and returns the next one that can lower the minimum.
-  const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r) {
+  const double theta = sample_threshold(m);
+  // Below this a time can matter: under the running minimum, or ≤ θ while nothing has touched
+  // (then every dip ≤ θ is refined).
+  const auto level = [&](const running_minimum& r) {
+    const double known = std::min(r.value, walk_cap_);
+    return r.value > 0.0 ? std::max(known, theta) : known;
+  };
+  const auto settle = [&](dips& low, const dip& d) {
+    if (d.at != dips::no_index) low.refined = std::min(low.refined, refined_at(i, m, d.at, d.value));
+  };
+  // Looks at time index k and returns the next one that can matter.
+  const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r, dips& low) {
     const double known = std::min(r.value, walk_cap_);
     if (known <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
     const ego_sweep::placement p = sweep_.at(k, m);
     ++work_.bound_checks;
     const double bound = norm(p.position - o.position) - reach_ - margin;
-    if (bound >= known) return first_possible(k, bound - known, centre, step);
+    if (bound >= known && (r.value <= 0.0 || bound > theta)) {
+      if (r.value > 0.0) settle(low, visit(low, k, false, 0.0, theta));
+      return first_possible(k, bound - level(r), centre, step);
+    }
     const double d = distance(p.position, p.direction, o) - margin;
     r.update(d, k);
     ++work_.distance_evaluations;
-    return first_possible(k, d - std::min(r.value, walk_cap_), rate, step);
+    if (r.value > 0.0) settle(low, visit(low, k, true, d, theta));
+    return first_possible(k, d - level(r), rate, step);
   };
   // The shared times first (kept for larger τ), then this τ's straight part.
   prefix_walk& prefix = prefix_[m];
   const std::size_t shared = first_straight_[i];
   if (prefix.until > shared) prefix = prefix_walk{};
-  for (; prefix.next < shared; prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum)) {
+  for (; prefix.next < shared; prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum, prefix.low)) {
   }
   prefix.until = shared;
   running_minimum r = prefix.minimum;
-  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r);
+  dips low = prefix.low;
+  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r, low);
   double c = r.value;
-  if (c > -walk_cap_ && c < walk_cap_) {
-    c = refined(i, m, r);
-    ++work_.refinements;
+  if (c > 0.0 && c <= theta) {
+    settle(low, finish(low));
+    c = std::min(c, low.refined);
+  } else if (c > -walk_cap_ && c < walk_cap_) {
+    c = std::min(c, refined_at(i, m, r.argmin, r.at_argmin));
   }
   c = std::clamp(c, -cap_, cap_);
   ++work_.exact_values;
@@ -364,7 +441,7 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   const double rate = distance_rate(m);
   // Sampled values at or above this keep every value in between, and so the refined minimum,
   // at or above the ceiling: between samples the signed distance falls by at most L·step/2.
-  const double limit = ceiling + half_step_change(rate);
+  const double limit = ceiling + refinement_threshold(rate, step);
   if (limit >= walk_cap_) return exact(forecast, m);  // the exact walk prunes as much
   std::vector<double>& floor = floor_[i];
   if (!floor.empty() && floor[m] >= ceiling) return floor[m];
@@ -418,11 +495,28 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
   std::vector<clearance_set> result;
   for (const double tau : forecast_times) {
     clearance_set clearance(samples.size());
+    std::vector<double> d(times.size());
     for (std::size_t m = 0; m < samples.size(); ++m) {
-      const auto at = [&](double t) { return clearance_at(ego, samples.maneuvers[m], obstacle, tau, t, window); };
+      const maneuver& u = samples.maneuvers[m];
+      const auto at = [&](double t) { return clearance_at(ego, u, obstacle, tau, t, window); };
+      const double theta = refinement_threshold(
+          largest_point_speed(ego, u, window.horizon) + largest_point_speed(obstacle), window.time_step);
       running_minimum r;
-      for (std::size_t k = 0; k < times.size(); ++k) r.update(at(times[k]), k);
-      clearance[m] = std::min(r.value, refined_minimum(times, r.argmin, at, r.at_argmin));
+      for (std::size_t k = 0; k < times.size(); ++k) {
+        d[k] = at(times[k]);
+        r.update(d[k], k);
+      }
+      double c = r.value;
+      if (c > 0.0 && c <= theta) {
+        // Passes within θ without touching at a sample time: refine every dip ≤ θ.
+        for (std::size_t j = 0; j < times.size(); ++j) {
+          const bool dip = d[j] <= theta && (j == 0 || d[j] <= d[j - 1]) && (j + 1 == times.size() || d[j] <= d[j + 1]);
+          if (dip) c = std::min(c, refined_minimum(times, j, at, d[j]));
+        }
+      } else {
+        c = std::min(c, refined_minimum(times, r.argmin, at, r.at_argmin));
+      }
+      clearance[m] = c;
     }
     result.push_back(std::move(clearance));
   }

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <span>
 #include <utility>
@@ -21,7 +22,29 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
 /// Signed clearance of every sample: the smallest signed distance − margin [m] between the ego
 /// executing the sample and an obstacle over the collision window. Negative ⇔ the sample collides
 /// [CSS]; the magnitude lets estimators place the boundary between samples. Clamped to ±cap.
+///
+/// Precisely, with d_k the signed distance − margin at the sample times t_k (`sample_times`) and
+/// θ = `refinement_threshold` of the pair (how far d can fall between a sample time and the
+/// nearest other time):
+/// - if min_k d_k ≤ 0 or min_k d_k > θ: min(min_k d_k, `refined_minimum` around the argmin);
+/// - otherwise (it passes within θ without touching at a sample time): min(min_k d_k, the
+///   `refined_minimum` around every local minimum d_j ≤ θ of the sampled sequence) — d_j ≤ d_{j±1}
+///   where those exist. Every dip that could reach 0 between samples is refined, so the sign is
+///   that of the continuous-time minimum; and a walk that looks at every time at which d can be ≤ θ
+///   sees every such dip, in any order.
 using clearance_set = std::vector<double>;
+
+/// Largest speed [m/s] of any point of the ego footprint executing `u` over the window:
+/// v_max (1 + |κ| R), v_max the larger of the start speed and the speed at T_h.
+double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon);
+
+/// Largest speed [m/s] of any point of the obstacle's footprint under any forecast: v + |ω| R.
+double largest_point_speed(const forecast_obstacle& obstacle);
+
+/// Most the signed distance of a pair whose points move at most at `rate` [m/s] (the sum of both
+/// footprints' largest point speeds) can fall between a time and the nearest sample time [m]:
+/// rate · step / 2, rounded up. A sampled minimum above it refines to a positive clearance.
+double refinement_threshold(double rate, double time_step);
 
 /// The ego's trajectories for every sample of a `maneuver_samples` over the collision window,
 /// shared by all obstacles and forecast times of a planning step. Poses are computed lazily, the
@@ -170,20 +193,48 @@ class clearance_field {
   /// Signed distance − margin of sample m and the obstacle under forecast time i at time t [s]:
   /// `clearance_at` bit for bit.
   double clearance_at_time(std::size_t i, std::size_t m, double t) const;
-  double refined(std::size_t i, std::size_t m, const running_minimum& r);
   /// Signed distance [m] of the ego placed at `position` with heading `direction` and the obstacle
   /// placed at `o`: `signed_distance` of the placed footprints bit for bit.
   double distance(vec2 position, vec2 direction, const obstacle_at& o) const;
   /// Rates of sample m: of its reference point's distance and of the signed distance [m/s].
   double centre_rate(std::size_t m) const { return sweep_.sample_speed(m) + obstacle_.motion.speed; }
-  /// Most a quantity changing at `rate` [m/s] can fall between a time and the nearest sample time
-  /// [m]: rate · step / 2, rounded up.
-  double half_step_change(double rate) const { return 0.5 * rate * sweep_.window().time_step * (1.0 + 1e-9) + 1e-12; }
   double distance_rate(std::size_t m) const { return sweep_.sample_point_speed(m) + obstacle_turn_speed_; }
+  /// θ of sample m (`refinement_threshold`) [m].
+  double sample_threshold(std::size_t m) const {
+    return refinement_threshold(distance_rate(m), sweep_.window().time_step);
+  }
+  /// `refined_minimum` of sample m under forecast time i around time index k, where the clearance
+  /// is `at_sample`; searched once per sample when the bracket lies in the times shared by every τ.
+  double refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample);
+
+  /// The local minima ≤ θ of one sample's sampled clearance, met in time order by a walk that
+  /// looks at every time at which the clearance can be ≤ θ (a time it skips is > θ).
+  struct dips {
+    std::size_t candidate = no_index;  ///< last time looked at if ≤ θ and ≤ the time before it
+    double candidate_value = 0.0;
+    std::size_t last = no_index;       ///< last time looked at
+    double last_value = 0.0;
+    double refined = std::numeric_limits<double>::infinity();  ///< smallest refinement of a confirmed dip
+    static constexpr std::size_t no_index = std::numeric_limits<std::size_t>::max();
+  };
+  /// A local minimum of the sampled clearance: its time index (`dips::no_index`: none) and value [m].
+  struct dip {
+    std::size_t at = dips::no_index;
+    double value = 0.0;
+  };
+  /// Where a sample stands in the walk that decides its sign (defined with the walk).
+  struct sign_state;
+
+  /// Tells `d` the walk is at time index k (`value` looked at there, or skipped: > θ). Returns the
+  /// local minimum this confirms, if any.
+  static dip visit(dips& d, std::size_t k, bool looked, double value, double theta);
+  /// The walk is over: the candidate still waiting for the time after it is a local minimum.
+  static dip finish(dips& d);
 
   /// The exact walk of one sample over the shared times t ≤ τ (the same for every larger τ).
   struct prefix_walk {
     running_minimum minimum;
+    dips low;
     std::size_t next = 0;   ///< next time index to look at
     std::size_t until = 0;  ///< time indices [0, until) are done
   };
