@@ -1,6 +1,7 @@
 #include <charconv>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include "mm/planner.hpp"
 
@@ -15,31 +16,47 @@ std::string number(double value) {
   return std::string(buffer, result.ptr);
 }
 
-std::string expected(const std::string& field, double value, const std::string& what) {
-  return field + " = " + number(value) + ": expected " + what;
+/// A field name or an expectation: text, or a callable that builds it (only when a check fails).
+template <class Text>
+std::string text(Text&& t) {
+  if constexpr (std::is_invocable_v<Text>) {
+    return std::string(t());
+  } else {
+    return std::string(t);
+  }
 }
 
-/// The first problem among `checks`, each a (condition that must hold, field, value, expectation).
+/// The first problem among the checks, each a (condition that must hold, field, value,
+/// expectation). Names and expectations are built only for the failing check: planning validates
+/// every input, and most inputs are valid.
 struct checker {
   std::optional<std::string> error;
-  void require(bool ok, const std::string& field, double value, const std::string& what) {
-    if (!error && !ok) error = expected(field, value, what);
+  template <class Field, class What>
+  void require(bool ok, Field&& field, double value, What&& what) {
+    if (!error && !ok) error = text(field) + " = " + number(value) + ": expected " + text(what);
   }
-  void finite(const std::string& field, double value) { require(std::isfinite(value), field, value, "a finite number"); }
-  void positive(const std::string& field, double value, const std::string& unit) {
-    require(std::isfinite(value) && value > 0.0, field, value, "a positive finite number of " + unit);
+  template <class Field>
+  void finite(Field&& field, double value) {
+    require(std::isfinite(value), field, value, "a finite number");
   }
-  void non_negative(const std::string& field, double value, const std::string& unit) {
-    require(std::isfinite(value) && value >= 0.0, field, value, "a finite number ≥ 0 of " + unit);
+  template <class Field>
+  void positive(Field&& field, double value, const char* unit) {
+    require(std::isfinite(value) && value > 0.0, field, value, [&] { return std::string("a positive finite number of ") + unit; });
   }
-  void pose(const std::string& field, const mm::pose& p) {
-    finite(field + ".position.x", p.position.x);
-    finite(field + ".position.y", p.position.y);
-    finite(field + ".heading", p.heading);
+  template <class Field>
+  void non_negative(Field&& field, double value, const char* unit) {
+    require(std::isfinite(value) && value >= 0.0, field, value, [&] { return std::string("a finite number ≥ 0 of ") + unit; });
   }
-  void shape(const std::string& field, const footprint& f) {
+  template <class Field>
+  void pose(Field&& field, const mm::pose& p) {
+    finite([&] { return text(field) + ".position.x"; }, p.position.x);
+    finite([&] { return text(field) + ".position.y"; }, p.position.y);
+    finite([&] { return text(field) + ".heading"; }, p.heading);
+  }
+  template <class Field>
+  void shape(Field&& field, const footprint& f) {
     if (error) return;
-    if (auto why = footprint_error(f)) error = field + ": " + *why;
+    if (auto why = footprint_error(f)) error = text(field) + ": " + *why;
   }
 };
 
@@ -58,7 +75,7 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.pose("ego.pose", in.ego.pose);
   c.non_negative("ego.speed", in.ego.speed, "m/s");
   c.require(!(in.ego.speed > l.speed_cap), "ego.speed", in.ego.speed,
-            "at most ego.limits.speed_cap = " + number(l.speed_cap) + " m/s");
+            [&] { return "at most ego.limits.speed_cap = " + number(l.speed_cap) + " m/s"; });
   c.shape("ego.shape", in.ego.shape);
   c.finite("nominal.acceleration", in.nominal.acceleration);
   c.finite("nominal.curvature", in.nominal.curvature);
@@ -67,14 +84,17 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.positive("config.displacement_horizon", k.displacement_horizon, "seconds");
   c.positive("config.collision_window", k.collision_window, "seconds");
   c.require(!(k.collision_window < k.displacement_horizon), "config.collision_window", k.collision_window,
-            "at least config.displacement_horizon = " + number(k.displacement_horizon) + " s");
+            [&] { return "at least config.displacement_horizon = " + number(k.displacement_horizon) + " s"; });
   c.positive("config.forecast_step", k.forecast_step, "seconds");
   c.require(k.forecast_count >= 1, "config.forecast_count", static_cast<double>(k.forecast_count),
             "at least 1 (the forecast grid is empty)");
   const double largest_forecast = static_cast<double>(k.forecast_count == 0 ? 0 : k.forecast_count - 1) * k.forecast_step;
   c.require(!(largest_forecast > k.collision_window + 1e-9), "config.forecast_count", static_cast<double>(k.forecast_count),
-            "a forecast grid within the collision window: the largest forecast time " + number(largest_forecast) +
-                " s exceeds config.collision_window = " + number(k.collision_window) + " s");
+            [&] {
+              return "a forecast grid within the collision window: the largest forecast time " +
+                     number(largest_forecast) + " s exceeds config.collision_window = " +
+                     number(k.collision_window) + " s";
+            });
   c.positive("config.history_window", k.history_window, "seconds");
   c.non_negative("config.safety_margin", k.safety_margin, "metres");
   c.non_negative("config.effort.longitudinal", k.effort.longitudinal, "s⁴/m²");
@@ -92,32 +112,34 @@ std::optional<std::string> validation_error(const plan_input& in) {
     const double steps = tau / k.forecast_step;
     c.require(!(std::abs(steps - std::round(steps)) > 1e-6 || tau > largest_forecast + 1e-9),
               "config.policy.constant_forecast_time", tau,
-              "a forecast time on the grid: a multiple of config.forecast_step = " + number(k.forecast_step) +
-                  " s from 0 to " + number(largest_forecast) + " s");
+              [&] {
+                return "a forecast time on the grid: a multiple of config.forecast_step = " +
+                       number(k.forecast_step) + " s from 0 to " + number(largest_forecast) + " s";
+              });
   }
 
   for (std::size_t j = 0; j < in.obstacles.size() && !c.error; ++j) {
     const obstacle_track& o = in.obstacles[j];
-    const std::string field = "obstacles[" + std::to_string(j) + "] (id " + std::to_string(o.id) + ")";
-    c.shape(field + ".shape", o.shape);
+    const auto field = [&] { return "obstacles[" + std::to_string(j) + "] (id " + std::to_string(o.id) + ")"; };
+    c.shape([&] { return field() + ".shape"; }, o.shape);
     const std::size_t needed = o.kind == obstacle_kind::static_obstacle ? 1 : 2;
-    c.require(o.history.size() >= needed, field + ".history size", static_cast<double>(o.history.size()),
+    c.require(o.history.size() >= needed, [&] { return field() + ".history size"; }, static_cast<double>(o.history.size()),
               needed == 1 ? "at least 1 observation"
                           : "at least 2 observations (speed and yaw rate are estimated from the history)");
     for (std::size_t i = 0; i < o.history.size() && !c.error; ++i) {
       const observation& obs = o.history[i];
-      const std::string at = field + ".history[" + std::to_string(i) + "]";
-      c.finite(at + ".time", obs.time);
-      c.pose(at + ".pose", obs.pose);
-      c.finite(at + ".speed", obs.speed);
+      const auto at = [&] { return field() + ".history[" + std::to_string(i) + "]"; };
+      c.finite([&] { return at() + ".time"; }, obs.time);
+      c.pose([&] { return at() + ".pose"; }, obs.pose);
+      c.finite([&] { return at() + ".speed"; }, obs.speed);
       if (i > 0) {
-        c.require(obs.time > o.history[i - 1].time, at + ".time", obs.time,
-                  "a time after the previous observation's " + number(o.history[i - 1].time) + " s");
+        c.require(obs.time > o.history[i - 1].time, [&] { return at() + ".time"; }, obs.time,
+                  [&] { return "a time after the previous observation's " + number(o.history[i - 1].time) + " s"; });
       }
     }
     if (!c.error && !o.history.empty()) {
-      c.require(!(o.history.back().time > in.time + 1e-9), field + ".history.back().time", o.history.back().time,
-                "no later than the planning time " + number(in.time) + " s");
+      c.require(!(o.history.back().time > in.time + 1e-9), [&] { return field() + ".history.back().time"; },
+                o.history.back().time, [&] { return "no later than the planning time " + number(in.time) + " s"; });
     }
   }
   return c.error;
