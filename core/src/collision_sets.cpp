@@ -177,6 +177,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
   sets_.assign(slots, clearance_set(samples, cap));
   below_cap_.assign(slots, 0);
+  colliding_.assign(slots, 0);
   floor_.assign(slots, {});
   exact_.assign(slots, std::vector<std::uint8_t>(samples, 0));
   prefix_.assign(samples, prefix_walk{});
@@ -299,6 +300,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       if (state.negative) {
         sets_[i][m] = -cap;
         ++below_cap_[i];
+        ++colliding_[i];
       } else if (state.low) {
         // Every time ≤ θ was looked at and every dip refined: this is the clearance.
         const double c = std::clamp(std::min(state.minimum, state.low_dips.refined), -cap, cap);

@@ -99,6 +99,21 @@ class evaluator {
     return r;
   }
 
+  /// True when obstacle j collides with some sample under one of the forecast indices `which`
+  /// (the reference's sets are ±1: negative where a sample collides).
+  bool collides_under_any(std::size_t j, std::span<const std::size_t> which) const {
+    for (const std::size_t i : which) {
+      if (reference_) {
+        for (const double c : reference_sets_[j][i]) {
+          if (c < 0.0) return true;
+        }
+      } else if (fields_[j].collides(i)) {
+        return true;
+      }
+    }
+    return false;
+  }
+
   /// The work of every clearance field so far, and the assignments whose room was computed.
   void add_work(plan_work& work) const {
     for (const clearance_field& field : fields_) {
@@ -355,6 +370,12 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
       }
       assignment = exhaustive_assignment_search(problem).forecast_index;
     } else {
+      // An obstacle that collides with no maneuver under any of its forecast times leaves the safe
+      // sets (spec §9) the same whatever its forecast time: the fast search holds it at τ = 0. Its
+      // clearances still enter every room (the interpolated boundary), so each room stays exact.
+      for (std::size_t j = 0; j < n; ++j) {
+        if (!evaluate.collides_under_any(j, problem.candidates[j])) problem.candidates[j] = {0};
+      }
       assignment = coordinate_ascent_assignment_search(problem).forecast_index;
     }
   }

@@ -95,6 +95,33 @@ TEST(planner, a_crossing_vehicle_forces_avoidance_with_a_safe_command) {
                                  {1.0, 3.0, 0.01, 0.0}));
 }
 
+TEST(planner, the_fast_search_holds_an_obstacle_that_never_collides_at_the_first_forecast_time) {
+  // Behind the ego, slower and turning: within reach, but no maneuver meets it under any forecast.
+  const obstacle_track follower = vehicle(2, {{-16.0, -1.0}, 0.0}, 4.0, 0.3, 1.0);
+  plan_input alone = ego_only(40.0 / 3.6);
+  alone.obstacles.push_back(follower);
+  const plan_result free = plan(alone);
+  ASSERT_TRUE(free.ok()) << free.error;
+  ASSERT_TRUE(free.obstacles[0].relevant);
+  expect_all_room(free);
+
+  // A car from the north, turning a little, timed to collide: its forecast time matters.
+  plan_input in = ego_only(40.0 / 3.6);
+  in.obstacles.push_back(vehicle(1, {{22.0, 20.0}, -pi / 2.0}, 10.0, 0.2, in.time));
+  in.obstacles.push_back(follower);
+  const plan_result fast = plan(in);
+  in.config.assignment_search = assignment_search_kind::exhaustive;
+  const plan_result exhaustive = plan(in);
+  ASSERT_TRUE(fast.ok() && exhaustive.ok()) << fast.error << exhaustive.error;
+  EXPECT_EQ(fast.obstacles[1].forecast_index, 0u);
+  // Only the crossing car's forecast times were tried (searching the follower's too took 64).
+  EXPECT_LE(fast.work.assignments_evaluated, fast.forecast_times.size());
+  // The crossing car's forecast time is the exhaustive search's, and so is the room.
+  EXPECT_EQ(fast.obstacles[0].forecast_index, exhaustive.obstacles[0].forecast_index);
+  EXPECT_NEAR(std::max(fast.mi_brake_selected, fast.mi_accelerate_selected),
+              std::max(exhaustive.mi_brake_selected, exhaustive.mi_accelerate_selected), 1e-3);
+}
+
 TEST(planner, work_counts_are_zero_without_relevant_obstacles_and_grow_with_interaction) {
   plan_input far = ego_only(12.0);
   far.obstacles.push_back(vehicle(7, {{300.0, 0.0}, pi}, 15.0, 0.0, far.time));

@@ -163,6 +163,8 @@ class clearance_field {
   /// True when no entry of forecast time i's set is below the cap: the obstacle cannot lower a
   /// minimum over obstacles that starts from the cap.
   bool all_at_cap(std::size_t i) const { return below_cap_[slot(i)] == 0; }
+  /// True when some sample collides with the obstacle forecast with forecast time i [CSS ≠ ∅].
+  bool collides(std::size_t i) const { return colliding_[slot(i)] != 0; }
   /// True when the obstacle stays farther than the cap from every sample at every time under
   /// every forecast time: every clearance is exactly +cap, so the obstacle changes nothing.
   bool inert() const { return inert_; }
@@ -263,6 +265,7 @@ class clearance_field {
   work work_;
   std::vector<clearance_set> sets_;
   std::vector<std::size_t> below_cap_;  ///< [slot]: entries of the set below the cap
+  std::vector<std::size_t> colliding_;  ///< [slot]: samples that collide (negative entries)
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;
   std::vector<prefix_walk> prefix_;                                    ///< [m]
