@@ -351,6 +351,19 @@ double clearance_field::distance(vec2 position, vec2 direction, const obstacle_a
   return signed_distance(place(sweep_.ego().shape, position, direction), place(obstacle_.shape, o.position, o.direction));
 }
 
+clearance_field::lower_bound clearance_field::distance_or_bound(const ego_sweep::placement& p, const obstacle_at& o,
+                                                                 double enough) const {
+  const double margin = sweep_.window().margin;
+  if (shapes_ != shape_pair::rectangles) return {distance(p.position, p.direction, o) - margin, true};
+  // `distance`'s arithmetic, with the face separation looked at before the corners.
+  const placed_rectangle ego{p.position, p.direction, ego_half_.x, ego_half_.y};
+  const placed_rectangle obstacle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
+  const double separation = face_separation(ego, obstacle);
+  if (separation <= 0.0) return {separation - margin, true};
+  if (separation - margin >= enough) return {separation - margin, false};
+  return {corner_distance(ego, obstacle) - margin, true};
+}
+
 double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample) {
   const auto at = [&](double t) { return clearance_at_time(i, m, t); };
   // On the shared times (t ≤ τ) the search sees the same function for every τ: search once.
@@ -402,7 +415,14 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
       if (r.value > 0.0) settle(low, visit(low, k, false, 0.0, theta));
       return first_possible(k, bound - level(r), centre, step);
     }
-    const double d = distance(p.position, p.direction, o) - margin;
+    // A lower bound of at least this leaves the running minimum and the dips as they are.
+    const double enough = r.value > 0.0 ? std::max(known, std::nextafter(theta, walk_cap_)) : known;
+    const lower_bound at = distance_or_bound(p, o, enough);
+    if (!at.exact) {
+      if (r.value > 0.0) settle(low, visit(low, k, false, 0.0, theta));
+      return first_possible(k, at.value - level(r), rate, step);
+    }
+    const double d = at.value;
     r.update(d, k);
     ++work_.distance_evaluations;
     if (r.value > 0.0) settle(low, visit(low, k, true, d, theta));
@@ -464,10 +484,12 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
       k = first_possible(k, bound - limit, centre, step);
       continue;
     }
-    const double d = distance(p.position, p.direction, o) - margin;
-    ++work_.distance_evaluations;
-    if (d < limit) return exact(forecast, m);
-    k = first_possible(k, d - limit, rate, step);
+    const lower_bound at = distance_or_bound(p, o, limit);
+    if (at.exact) {
+      ++work_.distance_evaluations;
+      if (at.value < limit) return exact(forecast, m);
+    }
+    k = first_possible(k, at.value - limit, rate, step);
   }
   if (floor.empty()) floor.assign(sweep_.sample_count(), -cap_);
   floor[m] = ceiling;

@@ -120,14 +120,6 @@ double squared_distance_to_box(vec2 local, const placed_rectangle& r) {
   return dx * dx + dy * dy;
 }
 
-/// The corners of a placed rectangle, in `place`'s order and arithmetic.
-std::array<vec2, 4> corners(const placed_rectangle& r) {
-  const vec2 along{r.axis.x * r.half_length, r.axis.y * r.half_length};
-  const vec2 across{-r.axis.y * r.half_width, r.axis.x * r.half_width};
-  return {r.centre + along + across, r.centre - along + across, r.centre - along - across,
-          r.centre + along - across};
-}
-
 placed_rectangle as_rectangle(const placed_footprint& f) {
   return {f.centre, f.axis, f.half_length, f.half_width};
 }
@@ -266,12 +258,23 @@ double face_separation(const placed_rectangle& a, const placed_rectangle& b) {
 }
 
 double corner_distance(const placed_rectangle& a, const placed_rectangle& b) {
-  const std::array<vec2, 4> ca = corners(a);
-  const std::array<vec2, 4> cb = corners(b);
+  // Each rectangle's corners in the other's frame, from the centres' offset and the relative
+  // heading (cos c, sin s): centre ± half length · axis ± half width · side.
+  const vec2 d = b.centre - a.centre;
+  const double c = dot(a.axis, b.axis);
+  const double s = cross(a.axis, b.axis);
+  const vec2 b_centre{dot(d, a.axis), cross(a.axis, d)};   // in a's frame
+  const vec2 b_along{b.half_length * c, b.half_length * s};
+  const vec2 b_across{-b.half_width * s, b.half_width * c};
+  const vec2 a_centre{-dot(d, b.axis), -cross(b.axis, d)};  // in b's frame
+  const vec2 a_along{a.half_length * c, -a.half_length * s};
+  const vec2 a_across{a.half_width * s, a.half_width * c};
   double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < 4; ++i) {
-    best = std::min(best, squared_distance_to_box(in_frame(a, cb[i]), a));
-    best = std::min(best, squared_distance_to_box(in_frame(b, ca[i]), b));
+  for (const double along : {1.0, -1.0}) {
+    for (const double across : {1.0, -1.0}) {
+      best = std::min(best, squared_distance_to_box(b_centre + along * b_along + across * b_across, a));
+      best = std::min(best, squared_distance_to_box(a_centre + along * a_along + across * a_across, b));
+    }
   }
   return std::sqrt(best);
 }

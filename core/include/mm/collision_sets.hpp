@@ -198,6 +198,15 @@ class clearance_field {
   /// Signed distance [m] of the ego placed at `position` with heading `direction` and the obstacle
   /// placed at `o`: `signed_distance` of the placed footprints bit for bit.
   double distance(vec2 position, vec2 direction, const obstacle_at& o) const;
+  /// The signed distance − margin [m] (`exact`), or a lower bound of it that is ≥ `enough`.
+  struct lower_bound {
+    double value;
+    bool exact;
+  };
+  /// `distance` − margin of the ego at `p` and the obstacle at `o`, bit for bit — or, for two
+  /// rectangles whose face separation − margin is already ≥ `enough`, that separation (it changes
+  /// no faster than the signed distance), without the corner distances.
+  lower_bound distance_or_bound(const ego_sweep::placement& p, const obstacle_at& o, double enough) const;
   /// Rates of sample m: of its reference point's distance and of the signed distance [m/s].
   double centre_rate(std::size_t m) const { return sweep_.sample_speed(m) + obstacle_.motion.speed; }
   double distance_rate(std::size_t m) const { return sweep_.sample_point_speed(m) + obstacle_turn_speed_; }
