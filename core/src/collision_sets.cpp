@@ -113,6 +113,44 @@ struct clearance_field::sign_state {
   dips low_dips;
 };
 
+/// The samples a sign walk follows, with their states, and per sample time the list of those to be
+/// looked at then: each sample waits in one list, that of the first time at which it can come
+/// within θ (none once it is known to collide or can no longer come within θ).
+struct clearance_field::sign_walk {
+  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  std::vector<std::uint32_t> sample;  ///< [j]: the sample whose state is state[j]
+  std::vector<sign_state> state;      ///< [j]
+  std::vector<std::uint32_t> link;    ///< [j]: the next in the same list
+  std::vector<std::uint32_t> head;    ///< [k]: the first waiting for time index k
+
+  explicit sign_walk(std::size_t times) : head(times, none) {}
+  void clear() {
+    sample.clear();
+    state.clear();
+    link.clear();
+    std::fill(head.begin(), head.end(), none);
+  }
+  /// Starts following sample m in `s`; returns its index j.
+  std::uint32_t follow(std::size_t m, const sign_state& s) {
+    sample.push_back(static_cast<std::uint32_t>(m));
+    state.push_back(s);
+    link.push_back(none);
+    return static_cast<std::uint32_t>(sample.size() - 1);
+  }
+  /// State j waits for time index k (k past the last time: it is done).
+  void wait(std::size_t k, std::uint32_t j) {
+    if (k >= head.size()) return;
+    link[j] = head[k];
+    head[k] = j;
+  }
+  /// Empties the list of time index k and returns its first state.
+  std::uint32_t take(std::size_t k) {
+    const std::uint32_t j = head[k];
+    head[k] = none;
+    return j;
+  }
+};
+
 clearance_field::dip clearance_field::visit(dips& d, std::size_t k, bool looked, double value, double theta) {
   dip confirmed;
   if (d.candidate != dips::no_index) {
@@ -196,18 +234,28 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     state.low_dips.refined = std::min(state.low_dips.refined, value);
     if (value <= 0.0) state.negative = true;
   };
-  // Looks at every sample at time index k, the obstacle placed at `o`; dips confirmed here are
-  // refined under forecast time i (at times shared by every τ when k is).
-  const auto advance = [&](std::size_t k, const obstacle_at& o, std::vector<sign_state>& states, std::size_t i) {
+  // Looks at the samples waiting for time index k, the obstacle placed at `o`; dips confirmed here
+  // are refined under forecast time i (at times shared by every τ when k is).
+  const auto advance = [&](std::size_t k, const obstacle_at& o, sign_walk& walk, std::size_t i) {
+    std::uint32_t j = walk.take(k);
     const double disc_gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
     if (disc_gap < walk_cap_) near = true;
-    if (disc_gap > threshold) return;
+    if (disc_gap > threshold) {
+      // No sample can be within θ now: they all wait for the next time.
+      while (j != sign_walk::none) {
+        const std::uint32_t after = walk.link[j];
+        walk.wait(k + 1, j);
+        j = after;
+      }
+      return;
+    }
     const placed_footprint obstacle_footprint =
         shapes_ == shape_pair::general ? place(obstacle_.shape, o.position, o.direction) : placed_footprint{};
     const placed_rectangle obstacle_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
-    for (std::size_t m = 0; m < samples; ++m) {
-      sign_state& state = states[m];
-      if (state.negative || state.next > k) continue;
+    while (j != sign_walk::none) {
+      const std::uint32_t after = walk.link[j];
+      const std::size_t m = walk.sample[j];
+      sign_state& state = walk.state[j];
       // Every time at which the clearance can be ≤ θ is looked at: a skipped one is > θ.
       const double rate = distance_rate(m);
       const double theta = sample_threshold(m);
@@ -227,7 +275,6 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
           state.next = first_possible(k, separation - theta, rate, step);
         } else if (separation <= -margin) {
           state.negative = true;
-          continue;
         } else {
           // Apart (separation > 0): the signed distance is the corner distance.
           d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
@@ -245,23 +292,27 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         ++work_.distance_evaluations;
         if (d <= 0.0) {
           state.negative = true;
-          continue;
+        } else {
+          state.minimum = std::min(state.minimum, d);
+          if (d <= theta) state.low = true;
+          state.next = first_possible(k, d - theta, rate, step);
         }
-        state.minimum = std::min(state.minimum, d);
-        if (d <= theta) state.low = true;
-        state.next = first_possible(k, d - theta, rate, step);
       }
-      settle(state, i, m, visit(state.low_dips, k, looked, d, theta));
+      if (!state.negative) settle(state, i, m, visit(state.low_dips, k, looked, d, theta));
+      if (!state.negative) walk.wait(state.next, j);
+      j = after;
     }
   };
-  std::vector<sign_state> shared(samples);
+  // The samples' states for the times t ≤ τ shared by every forecast time still to come.
+  sign_walk shared(times.size());
+  for (std::uint32_t m = 0; m < samples; ++m) shared.follow(m, sign_state{});
   if (slots > 1) {
     // One pass for every forecast time at once: a disc holding the obstacle's reference point under
     // every τ_i at t_k bounds the distance to each of them from below, and the smallest of those
     // distances changes no faster than the centre rate. A sample is not looked at by the walks
     // below before the first time at which it can come within its threshold under some τ_i.
-    for (sign_state& state : shared) state.next = std::numeric_limits<std::size_t>::max();
     std::vector<std::size_t> next(samples, 0);
+    std::vector<std::size_t> first(samples, std::numeric_limits<std::size_t>::max());
     for (std::size_t k = 0; k < times.size(); ++k) {
       vec2 low = obstacle_pose(0, k).position;
       vec2 high = low;
@@ -281,34 +332,51 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         if (bound > own_threshold) {
           next[m] = first_possible(k, bound - own_threshold, centre_rate(m), step);
         } else {
-          shared[m].next = k;
+          first[m] = k;
           next[m] = std::numeric_limits<std::size_t>::max();
         }
       }
     }
+    for (std::uint32_t m = 0; m < samples; ++m) shared.wait(first[m], m);
+  } else {
+    for (std::uint32_t m = 0; m < samples; ++m) shared.wait(0, m);
   }
-  std::vector<sign_state> walk;
+  // Refines the dip still waiting for the time after it (every later time was > θ) and writes what
+  // the walk found of sample m under forecast time i: negative, or the exact value of a sample that
+  // came within θ; otherwise the +cap placeholder stays.
+  const auto conclude = [&](std::size_t i, std::size_t m, sign_state state) {
+    if (!state.negative) settle(state, i, m, finish(state.low_dips));
+    if (state.negative) {
+      sets_[i][m] = -cap;
+      ++below_cap_[i];
+      ++colliding_[i];
+    } else if (state.low) {
+      // Every time ≤ θ was looked at and every dip refined: this is the clearance.
+      const double c = std::clamp(std::min(state.minimum, state.low_dips.refined), -cap, cap);
+      ++work_.exact_values;
+      if (c < cap) ++below_cap_[i];
+      sets_[i][m] = c;
+      exact_[i][m] = 1;
+    }
+  };
+  sign_walk walk(times.size());
+  std::vector<std::uint8_t> followed(samples);
   std::size_t shared_until = 0;
   for (std::size_t i = 0; i < slots; ++i) {
     for (; shared_until < first_straight_[i]; ++shared_until) advance(shared_until, turning_[shared_until], shared, i);
-    walk = shared;
-    for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk, i);
-    for (std::size_t m = 0; m < samples; ++m) {
-      sign_state& state = walk[m];
-      // A dip still waiting for the time after it: every later time was > θ.
-      if (!state.negative) settle(state, i, m, finish(state.low_dips));
-      if (state.negative) {
-        sets_[i][m] = -cap;
-        ++below_cap_[i];
-        ++colliding_[i];
-      } else if (state.low) {
-        // Every time ≤ θ was looked at and every dip refined: this is the clearance.
-        const double c = std::clamp(std::min(state.minimum, state.low_dips.refined), -cap, cap);
-        ++work_.exact_values;
-        if (c < cap) ++below_cap_[i];
-        sets_[i][m] = c;
-        exact_[i][m] = 1;
+    // This τ's straight part, for the samples still waiting: a copy of their shared states.
+    walk.clear();
+    std::fill(followed.begin(), followed.end(), std::uint8_t{0});
+    for (std::size_t k = shared_until; k < times.size(); ++k) {
+      for (std::uint32_t j = shared.head[k]; j != sign_walk::none; j = shared.link[j]) {
+        walk.wait(k, walk.follow(shared.sample[j], shared.state[j]));
+        followed[shared.sample[j]] = 1;
       }
+    }
+    for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk, i);
+    for (std::size_t j = 0; j < walk.sample.size(); ++j) conclude(i, walk.sample[j], walk.state[j]);
+    for (std::uint32_t m = 0; m < samples; ++m) {
+      if (!followed[m]) conclude(i, m, shared.state[m]);
     }
   }
   if (!near) {

@@ -233,8 +233,10 @@ class clearance_field {
     std::size_t at = dips::no_index;
     double value = 0.0;
   };
-  /// Where a sample stands in the walk that decides its sign (defined with the walk).
+  /// Where a sample stands in the walk that decides its sign, and the samples a walk follows
+  /// (defined with the walk).
   struct sign_state;
+  struct sign_walk;
 
   /// Tells `d` the walk is at time index k (`value` looked at there, or skipped: > θ). Returns the
   /// local minimum this confirms, if any.
