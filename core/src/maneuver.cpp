@@ -23,10 +23,9 @@ double travelled_distance(double initial_speed, double acceleration, double t, d
   if (acceleration == 0.0) return std::clamp(initial_speed, 0.0, speed_cap) * t;
   // v0 + a·τ crosses 0 and v_cap at these times; between consecutive break points the clamped
   // speed is linear, so the trapezoid rule is exact on each piece.
-  std::array<double, 4> breaks{0.0, -initial_speed / acceleration,
-                               (speed_cap - initial_speed) / acceleration, t};
-  for (double& b : breaks) b = std::clamp(b, 0.0, t);
-  std::sort(breaks.begin(), breaks.end());
+  const double stop = std::clamp(-initial_speed / acceleration, 0.0, t);
+  const double cap = std::clamp((speed_cap - initial_speed) / acceleration, 0.0, t);
+  const std::array<double, 4> breaks{0.0, std::min(stop, cap), std::max(stop, cap), t};
   double distance = 0.0;
   for (std::size_t i = 0; i + 1 < breaks.size(); ++i) {
     const double t0 = breaks[i];
