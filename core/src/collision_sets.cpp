@@ -10,8 +10,10 @@ namespace mm {
 
 double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle, double tau, double t,
                     const collision_window& window) {
-  const pose p = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
-  return signed_distance(place(ego.shape, p), place(obstacle.shape, forecast_pose(obstacle.motion, tau, t))) -
+  const placement e = maneuver_placement(ego.pose, unit_vector(ego.pose.heading), ego.speed, u, t, window.horizon,
+                                         ego.limits.speed_cap);
+  return signed_distance(place(ego.shape, e.position, e.direction),
+                         place(obstacle.shape, forecast_pose(obstacle.motion, tau, t))) -
          window.margin;
 }
 
@@ -21,18 +23,15 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
       window_(window),
       sample_count_(samples.size()),
       times_(sample_times(window.duration, window.time_step)),
-      start_rotation_{std::cos(ego.pose.heading), std::sin(ego.pose.heading)} {
+      start_rotation_(unit_vector(ego.pose.heading)) {
   const double horizon = window.horizon;
   const double cap = ego.limits.speed_cap;
   straight_.reserve(sample_count_);
   for (const maneuver& u : samples.maneuvers) {
-    // maneuver_pose's values for t > T_h, in its order of operations.
-    const double s = travelled_distance(ego.speed, u.acceleration, horizon, cap);
-    const double local_heading = u.curvature * s;
-    const double heading = ego.pose.heading + local_heading;
-    straight_.push_back({arc_point(u.curvature, s), unit_vector(local_heading),
-                         speed_after(ego.speed, u.acceleration, horizon, cap), heading,
-                         {std::cos(heading), std::sin(heading)}});
+    // maneuver_local_placement's values for t > T_h, in its order of operations.
+    const placement end = maneuver_local_placement(ego.speed, u, horizon, horizon, cap);
+    straight_.push_back({end.position, end.direction, speed_after(ego.speed, u.acceleration, horizon, cap),
+                         rotated(end.direction, start_rotation_.x, start_rotation_.y)});
   }
   for (const maneuver& u : samples.maneuvers) {
     sample_speed_.push_back(std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap)));
@@ -52,30 +51,23 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
   }
 }
 
-pose ego_sweep::pose_at(std::size_t m, double t) const {
+ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
+  const vec2 rotation = start_rotation_;
   if (t > window_.horizon) {
     const straight_part& part = straight_[m];
-    const double straight = part.speed * (t - window_.horizon);
-    const vec2 local = part.local + straight * part.along;
-    return {ego_.pose.position + rotated(local, start_rotation_.x, start_rotation_.y), part.heading};
+    const vec2 local = part.local + (part.speed * (t - window_.horizon)) * part.along;
+    return {ego_.pose.position + rotated(local, rotation.x, rotation.y), part.direction};
   }
-  // maneuver_pose with the start's rotation kept (to_world's arithmetic).
-  const pose local = maneuver_local_pose(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
-  return {ego_.pose.position + rotated(local.position, start_rotation_.x, start_rotation_.y),
-          ego_.pose.heading + local.heading};
-}
-
-ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
-  const pose p = pose_at(m, t);
-  return {p.position, t > window_.horizon ? straight_[m].direction : vec2{std::cos(p.heading), std::sin(p.heading)}};
+  const placement local =
+      maneuver_local_placement(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
+  return {ego_.pose.position + rotated(local.position, rotation.x, rotation.y),
+          rotated(local.direction, rotation.x, rotation.y)};
 }
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {
-  const double t = times_[k];
-  const pose p = pose_at(m, t);
-  const vec2 direction = t > window_.horizon ? straight_[m].direction : vec2{std::cos(p.heading), std::sin(p.heading)};
+  const placement p = placement_at(m, times_[k]);
   const std::size_t index = k * sample_count_ + m;
-  placements_[index] = {p.position.x, p.position.y, direction.x, direction.y};
+  placements_[index] = {p.position.x, p.position.y, p.direction.x, p.direction.y};
   known_[index] = 1;
 }
 
@@ -92,6 +84,12 @@ double largest_point_speed(const forecast_obstacle& obstacle) {
 double refinement_threshold(double rate, double time_step) { return 0.5 * rate * time_step * (1.0 + 1e-9) + 1e-12; }
 
 namespace {
+
+/// A lower bound computed in floating point can exceed what it bounds by a few units in the last
+/// place where the two are equal in exact arithmetic (the face separation of parallel faces is
+/// their distance). Every bound that lets a walk skip a time is lowered by this [m], so that a time
+/// is skipped only when it provably cannot matter, to the last bit.
+constexpr double rounding_slack = 1e-12;
 
 /// First time index after k at which a quantity `gap` above the target, changing at most at
 /// `rate`, could reach the target (k + 1 when it is not above).
@@ -180,7 +178,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   distance_rate_ = sweep.largest_point_speed() + motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
   // Minima up to half a step's change above the cap can still refine to below it: walk exactly to there.
   walk_cap_ = cap + distance_rate_ * step / 2.0;
-  reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius;
+  reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius + rounding_slack;
   centre_rate_ = sweep.largest_speed() + motion.speed;
   obstacle_turn_speed_ = largest_point_speed(obstacle);
   if (const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape)) {
@@ -271,8 +269,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         // signed distance when they overlap) and changes no faster than it.
         const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
         const double separation = face_separation(ego_rectangle, obstacle_rectangle) - margin;
-        if (separation > theta) {
-          state.next = first_possible(k, separation - theta, rate, step);
+        if (separation - rounding_slack > theta) {
+          state.next = first_possible(k, separation - rounding_slack - theta, rate, step);
         } else if (separation <= -margin) {
           state.negative = true;
         } else {
@@ -428,7 +426,7 @@ clearance_field::lower_bound clearance_field::distance_or_bound(const ego_sweep:
   const placed_rectangle obstacle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
   const double separation = face_separation(ego, obstacle);
   if (separation <= 0.0) return {separation - margin, true};
-  if (separation - margin >= enough) return {separation - margin, false};
+  if (const double bound = separation - margin - rounding_slack; bound >= enough) return {bound, false};
   return {corner_distance(ego, obstacle) - margin, true};
 }
 

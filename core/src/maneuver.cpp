@@ -43,16 +43,57 @@ vec2 arc_point(double curvature, double arc_length) {
   return {arc_length * sinc(turn), arc_length * versine_ratio(turn)};
 }
 
-pose maneuver_local_pose(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap) {
-  const double arc_time = std::min(t, horizon);
-  const double s = travelled_distance(initial_speed, u.acceleration, arc_time, speed_cap);
-  vec2 local = arc_point(u.curvature, s);
-  const double local_heading = u.curvature * s;
+namespace {
+
+/// Where the maneuver's arc and straight part put the ego at time t, in the frame of the start,
+/// and the turn κs [rad] of the arc.
+struct local_motion {
+  placement at;
+  double turn;
+};
+
+local_motion move(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap) {
+  const double s = travelled_distance(initial_speed, u.acceleration, std::min(t, horizon), speed_cap);
+  const double turn = u.curvature * s;
+  vec2 local;
+  vec2 along;
+  if (std::abs(turn) < 1e-4) {
+    // Series of arc_point and of the direction: the next terms are below the rounding.
+    const double turn2 = turn * turn;
+    local = {s * (1.0 - turn2 / 6.0), s * (turn / 2.0 - turn * turn2 / 24.0)};
+    along = {1.0 - turn2 / 2.0, turn - turn * turn2 / 6.0};
+  } else {
+    const double half_sine = std::sin(turn / 2.0);
+    const double half_cosine = std::cos(turn / 2.0);
+    const double sine = 2.0 * half_sine * half_cosine;
+    const double versine = 2.0 * half_sine * half_sine;  // 1 − cos, without cancellation
+    local = {s * (sine / turn), s * (versine / turn)};
+    along = {1.0 - versine, sine};
+  }
   if (t > horizon) {
     const double straight = speed_after(initial_speed, u.acceleration, horizon, speed_cap) * (t - horizon);
-    local = local + straight * unit_vector(local_heading);
+    local = local + straight * along;
   }
-  return {local, local_heading};
+  return {{local, along}, turn};
+}
+
+}  // namespace
+
+placement maneuver_local_placement(double initial_speed, const maneuver& u, double t, double horizon,
+                                   double speed_cap) {
+  return move(initial_speed, u, t, horizon, speed_cap).at;
+}
+
+placement maneuver_placement(const pose& start, vec2 start_direction, double initial_speed, const maneuver& u,
+                             double t, double horizon, double speed_cap) {
+  const placement local = maneuver_local_placement(initial_speed, u, t, horizon, speed_cap);
+  return {start.position + rotated(local.position, start_direction.x, start_direction.y),
+          rotated(local.direction, start_direction.x, start_direction.y)};
+}
+
+pose maneuver_local_pose(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap) {
+  const local_motion m = move(initial_speed, u, t, horizon, speed_cap);
+  return {m.at.position, m.turn};
 }
 
 pose maneuver_pose(const pose& start, double initial_speed, const maneuver& u, double t,

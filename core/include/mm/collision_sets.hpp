@@ -47,9 +47,9 @@ double largest_point_speed(const forecast_obstacle& obstacle);
 double refinement_threshold(double rate, double time_step);
 
 /// The ego's trajectories for every sample of a `maneuver_samples` over the collision window,
-/// shared by all obstacles and forecast times of a planning step. Poses are computed lazily, the
-/// first time a (sample, sample time) pair is asked for, and kept; on the straight part (t > T_h)
-/// they cost no trigonometry. Every pose equals `maneuver_pose` bit for bit.
+/// shared by all obstacles and forecast times of a planning step. Placements are computed lazily,
+/// the first time a (sample, sample time) pair is asked for, and kept; on the straight part
+/// (t > T_h) they cost no trigonometry. Every placement equals `maneuver_placement` bit for bit.
 ///
 /// Holds mutable caches: one sweep must not be used by two threads at once.
 class ego_sweep {
@@ -62,21 +62,17 @@ class ego_sweep {
   std::size_t sample_count() const { return sample_count_; }
   const std::vector<double>& times() const { return times_; }
 
-  /// Position [m] and heading direction (cos θ, sin θ) of sample m at time index k.
-  struct placement {
-    vec2 position;
-    vec2 direction;
-  };
+  /// Position [m] and heading direction (cos θ, sin θ) of a sample.
+  using placement = mm::placement;
+  /// Placement of sample m at time index k.
   placement at(std::size_t k, std::size_t m) const {
     const std::size_t index = k * sample_count_ + m;
     if (!known_[index]) fill(k, m);
     const stored& p = placements_[index];
     return {{p.px, p.py}, {p.dx, p.dy}};
   }
-  /// Pose of sample m at any time t [s]: `maneuver_pose` bit for bit, cheaper on the straight part.
-  pose pose_at(std::size_t m, double t) const;
-  /// Position and heading direction of sample m at any time t [s], as `place` would compute them
-  /// from `pose_at`.
+  /// Placement of sample m at any time t [s]: `maneuver_placement` bit for bit, cheaper on the
+  /// straight part.
   placement placement_at(std::size_t m, double t) const;
   /// Largest speed of sample m's reference point over the window [m/s].
   double sample_speed(std::size_t m) const { return sample_speed_[m]; }
@@ -95,13 +91,12 @@ class ego_sweep {
  private:
   void fill(std::size_t k, std::size_t m) const;
 
-  /// What the straight part (t > T_h) of sample m needs: `maneuver_pose`'s intermediate values.
+  /// What the straight part (t > T_h) of sample m needs: `maneuver_local_placement`'s values at T_h.
   struct straight_part {
     vec2 local;       ///< arc end point in the ego frame [m]
-    vec2 along;       ///< unit vector of the local heading
+    vec2 along;       ///< heading direction there, in the ego frame
     double speed;     ///< at T_h [m/s]
-    double heading;   ///< world heading [rad]
-    vec2 direction;   ///< (cos, sin) of it
+    vec2 direction;   ///< heading direction in the world
   };
 
   /// A placement without default member initialisers, so the cache is allocated uninitialised.
@@ -257,7 +252,7 @@ class clearance_field {
   std::vector<double> taus_;
   double cap_;
   double walk_cap_;
-  double reach_;          ///< bounding radii of ego and obstacle [m]
+  double reach_;          ///< bounding radii of ego and obstacle, and the rounding slack [m]
   double centre_rate_;    ///< Lipschitz constant of the reference points' distance [m/s]
   double distance_rate_;  ///< L: Lipschitz constant of the signed distance [m/s]
   bool inert_ = false;

@@ -45,6 +45,22 @@ double travelled_distance(double initial_speed, double acceleration, double t, d
 /// (x forward): (sin(κs)/κ, (1 − cos κs)/κ), the straight segment (s, 0) when κ = 0 (§3).
 vec2 arc_point(double curvature, double arc_length);
 
+/// A reference point [m] and the heading as a unit vector (cos θ, sin θ): what a footprint is placed by.
+struct placement {
+  vec2 position;
+  vec2 direction;
+};
+
+/// `maneuver_pose` in the frame of the start (x forward, heading 0 at t = 0), the heading as a unit
+/// vector: position [m] and direction relative to the start. One sine and cosine of half the turn
+/// κs give both: sin κs = 2 sin(κs/2) cos(κs/2), 1 − cos κs = 2 sin²(κs/2).
+placement maneuver_local_placement(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap);
+
+/// `maneuver_local_placement` in the world: rotated by `start_direction` = (cos, sin) of
+/// `start.heading` and moved to `start.position`. What the collision tests place the ego by.
+placement maneuver_placement(const pose& start, vec2 start_direction, double initial_speed, const maneuver& u,
+                             double t, double horizon, double speed_cap);
+
 /// `maneuver_pose` in the frame of the start (x forward, heading 0 at t = 0): position [m] and
 /// heading [rad] relative to the start.
 pose maneuver_local_pose(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap);
