@@ -34,7 +34,7 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
                          rotated(end.direction, start_rotation_.x, start_rotation_.y)});
   }
   for (const maneuver& u : samples.maneuvers) {
-    sample_speed_.push_back(std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap)));
+    sample_speed_.push_back(mm::largest_speed(ego, u, horizon));
     sample_point_speed_.push_back(mm::largest_point_speed(ego, u, horizon));
   }
   known_.assign(times_.size() * sample_count_, 0);
@@ -71,10 +71,13 @@ void ego_sweep::fill(std::size_t k, std::size_t m) const {
   known_[index] = 1;
 }
 
-double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon) {
+double largest_speed(const ego_state& ego, const maneuver& u, double horizon) {
   const double cap = ego.limits.speed_cap;
-  const double top = std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
-  return top * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
+  return std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
+}
+
+double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon) {
+  return largest_speed(ego, u, horizon) * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
 }
 
 double largest_point_speed(const forecast_obstacle& obstacle) {
@@ -175,12 +178,12 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   const collision_window& window = sweep.window();
   const double step = window.time_step;
   const double obstacle_radius = bounding_radius(obstacle.shape);
-  distance_rate_ = sweep.largest_point_speed() + motion.speed + std::abs(motion.yaw_rate) * obstacle_radius;
+  obstacle_turn_speed_ = largest_point_speed(obstacle);
+  distance_rate_ = sweep.largest_point_speed() + obstacle_turn_speed_;
   // Minima up to half a step's change above the cap can still refine to below it: walk exactly to there.
   walk_cap_ = cap + distance_rate_ * step / 2.0;
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius + rounding_slack;
   centre_rate_ = sweep.largest_speed() + motion.speed;
-  obstacle_turn_speed_ = largest_point_speed(obstacle);
   if (const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape)) {
     ego_half_ = {ego_shape->length / 2.0, ego_shape->width / 2.0};
     if (const auto* r = std::get_if<rectangle>(&obstacle.shape)) {
