@@ -220,7 +220,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   floor_.assign(slots, {});
   exact_.assign(slots, std::vector<std::uint8_t>(samples, 0));
   prefix_.assign(samples, prefix_walk{});
-  golden_.assign(samples, {});
+  refined_.assign(samples, {});
 
   // A sampled minimum above this refines to a positive clearance: between samples the signed
   // distance can fall by at most L·step/2 below the nearest sample.
@@ -438,13 +438,13 @@ double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, 
   // On the shared times (t ≤ τ) the search sees the same function for every τ: search once.
   const bool shared = k + 1 < first_straight_[i];
   if (shared) {
-    for (const auto& [argmin, value] : golden_[m]) {
+    for (const auto& [argmin, value] : refined_[m]) {
       if (argmin == k) return value;
     }
   }
   ++work_.refinements;
   const double value = refined_minimum(sweep_.times(), k, at, at_sample);
-  if (shared) golden_[m].emplace_back(k, value);
+  if (shared) refined_[m].emplace_back(k, value);
   return value;
 }
 

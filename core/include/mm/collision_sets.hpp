@@ -178,7 +178,7 @@ class clearance_field {
     std::size_t bound_checks = 0;          ///< lower bounds looked at (pose distance, separation)
     std::size_t distance_evaluations = 0;  ///< signed distances at sample times
     std::size_t exact_values = 0;          ///< clearances made exact
-    std::size_t refinements = 0;           ///< golden-section searches run
+    std::size_t refinements = 0;           ///< refinements of a sampled minimum run (`refined_minimum`)
   };
   const work& statistics() const { return work_; }
 
@@ -279,7 +279,7 @@ class clearance_field {
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;
   std::vector<prefix_walk> prefix_;                                    ///< [m]
-  std::vector<std::vector<std::pair<std::size_t, double>>> golden_;  ///< [m]: (argmin, golden-section minimum) on shared times
+  std::vector<std::vector<std::pair<std::size_t, double>>> refined_;  ///< [m]: (time index, refined minimum) on shared times
 };
 
 /// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed

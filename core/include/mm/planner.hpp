@@ -51,7 +51,7 @@ struct plan_work {
   std::size_t relevant_obstacles = 0;    ///< obstacles that can interact within T_c (spec §9)
   std::size_t bound_checks = 0;          ///< (sample, time) pairs looked at through a lower bound
   std::size_t distance_evaluations = 0;  ///< signed distances at sample times
-  std::size_t refinements = 0;           ///< golden-section searches of a clearance minimum
+  std::size_t refinements = 0;           ///< refinements of a sampled clearance minimum (`refined_minimum`)
   std::size_t assignments_evaluated = 0; ///< forecast-time assignments whose room was computed (spec §9)
 };
 
