@@ -58,10 +58,8 @@ ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
     const vec2 local = part.local + (part.speed * (t - window_.horizon)) * part.along;
     return {ego_.pose.position + rotated(local, rotation.x, rotation.y), part.direction};
   }
-  const placement local =
-      maneuver_local_placement(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
-  return {ego_.pose.position + rotated(local.position, rotation.x, rotation.y),
-          rotated(local.direction, rotation.x, rotation.y)};
+  return maneuver_placement(ego_.pose, rotation, ego_.speed, samples_.maneuvers[m], t, window_.horizon,
+                            ego_.limits.speed_cap);
 }
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {
