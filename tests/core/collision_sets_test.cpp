@@ -61,6 +61,42 @@ TEST(collision_sets, fast_clearances_equal_the_clamped_brute_force_ones_bit_for_
   }
 }
 
+TEST(collision_sets, the_sign_walk_gives_every_sample_its_brute_force_sign_and_its_values_bit_for_bit) {
+  // Straight after construction, before any value is asked for: a sample is negative exactly when
+  // its brute-force clearance is ≤ 0, and a value the walk marked exact is the brute-force one.
+  std::mt19937_64 rng(testing::property_seed() + 3);
+  const std::size_t count = testing::property_count(12);
+  const std::vector<double> taus = forecast_times(planner_config{});
+  constexpr double cap = 2.0;
+  std::size_t negative = 0;
+  std::size_t exact = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = two_obstacle_scene(rng, trial);
+    const prepared p = prepare(in, 0.05);
+    const ego_sweep sweep(in.ego, p.samples, p.window);
+    for (const forecast_obstacle& obstacle : p.obstacles) {
+      const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
+      const clearance_field field(sweep, obstacle, taus, cap);
+      for (std::size_t i = 0; i < taus.size(); ++i) {
+        for (std::size_t m = 0; m < p.samples.size(); ++m) {
+          const double truth = std::clamp(brute[i][m], -cap, cap);
+          const double walked = field.set(i)[m];
+          ASSERT_EQ(walked <= 0.0, truth <= 0.0)
+              << "tau " << taus[i] << " sample " << m << " walked " << walked << " brute force " << truth << "\n"
+              << testing::describe(in);
+          if (field.is_exact(i, m)) {
+            ASSERT_EQ(walked, truth) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
+            ++exact;
+          }
+          negative += walked <= 0.0 ? 1 : 0;
+        }
+      }
+    }
+  }
+  EXPECT_GT(negative, 0u);
+  EXPECT_GT(exact, 0u);
+}
+
 TEST(collision_sets, a_bounded_query_is_exact_below_its_ceiling_and_never_hides_a_lower_clearance) {
   std::mt19937_64 rng(testing::property_seed() + 5);
   const std::size_t count = testing::property_count(12);
