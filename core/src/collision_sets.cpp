@@ -225,6 +225,9 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   const double threshold = refinement_threshold(distance_rate_, step);
   const double margin = window.margin;
   const vec2 start = sweep.reach_centre(0);
+  // [m]: the time index at which sample m touched the obstacle under the last forecast time that
+  // made it touch (none yet).
+  std::vector<std::uint32_t> contact(samples, sign_walk::none);
   bool near = false;
   // Refines a confirmed dip of sample m under forecast time i: one at or below 0 makes it negative.
   const auto settle = [&](sign_state& state, std::size_t i, std::size_t m, const dip& d) {
@@ -255,6 +258,11 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       const std::uint32_t after = walk.link[j];
       const std::size_t m = walk.sample[j];
       sign_state& state = walk.state[j];
+      if (state.negative) {
+        // Shown to touch at a later time before the walk came here (`touches` below).
+        j = after;
+        continue;
+      }
       // Every time at which the clearance can be ≤ θ is looked at: a skipped one is > θ.
       const double rate = distance_rate(m);
       const double theta = sample_threshold(m);
@@ -269,11 +277,13 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         // The separation along the face normals bounds the signed distance from below (it is the
         // signed distance when they overlap) and changes no faster than it.
         const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
-        const double separation = face_separation(ego_rectangle, obstacle_rectangle) - margin;
+        const double face = face_separation(ego_rectangle, obstacle_rectangle);
+        const double separation = face - margin;
         if (separation - rounding_slack > theta) {
           state.next = first_possible(k, separation - rounding_slack - theta, rate, step);
-        } else if (separation <= -margin) {
+        } else if (face <= 0.0) {
           state.negative = true;
+          contact[m] = static_cast<std::uint32_t>(k);
         } else {
           // Apart (separation > 0): the signed distance is the corner distance.
           d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
@@ -291,6 +301,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         ++work_.distance_evaluations;
         if (d <= 0.0) {
           state.negative = true;
+          contact[m] = static_cast<std::uint32_t>(k);
         } else {
           state.minimum = std::min(state.minimum, d);
           if (d <= theta) state.low = true;
@@ -358,6 +369,21 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       exact_[i][m] = 1;
     }
   };
+  // Whether sample m touches the obstacle at time index k under forecast time i: the signed
+  // distance at a sample time, less the margin, is ≤ 0 (then so is the clearance).
+  const auto touches = [&](std::size_t i, std::size_t k, std::size_t m) {
+    const obstacle_at o = obstacle_pose(i, k);
+    const ego_sweep::placement p = sweep.at(k, m);
+    ++work_.bound_checks;
+    if (norm(p.position - o.position) - reach_ - margin > 0.0) return false;
+    ++work_.distance_evaluations;
+    if (!rectangles) return distance(p.position, p.direction, o) - margin <= 0.0;
+    const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
+    const placed_rectangle obstacle_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
+    const double face = face_separation(ego_rectangle, obstacle_rectangle);
+    if (face <= 0.0) return true;
+    return face - margin <= 0.0 && corner_distance(ego_rectangle, obstacle_rectangle) - margin <= 0.0;
+  };
   sign_walk walk(times.size());
   std::vector<std::uint8_t> followed(samples);
   std::size_t shared_until = 0;
@@ -366,10 +392,16 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     // This τ's straight part, for the samples still waiting: a copy of their shared states.
     walk.clear();
     std::fill(followed.begin(), followed.end(), std::uint8_t{0});
+    // A sample that touched under an earlier forecast time, at a time after the one it waits for,
+    // is tried at that time first: neighbouring forecasts differ little, and one touch at a sample
+    // time decides the sign without walking to it.
     for (std::size_t k = shared_until; k < times.size(); ++k) {
       for (std::uint32_t j = shared.head[k]; j != sign_walk::none; j = shared.link[j]) {
-        walk.wait(k, walk.follow(shared.sample[j], shared.state[j]));
-        followed[shared.sample[j]] = 1;
+        const std::uint32_t m = shared.sample[j];
+        const std::uint32_t copy = walk.follow(m, shared.state[j]);
+        walk.wait(k, copy);
+        followed[m] = 1;
+        if (contact[m] != sign_walk::none && contact[m] > k && touches(i, contact[m], m)) walk.state[copy].negative = true;
       }
     }
     for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk, i);
