@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <cstdio>
 
 #include "mm/planner.hpp"
@@ -38,102 +39,103 @@ plan_input two_obstacle_scene(std::mt19937_64& rng, std::size_t trial) {
   return in;
 }
 
-TEST(collision_sets, fast_clearances_equal_the_clamped_brute_force_ones_bit_for_bit) {
-  std::mt19937_64 rng(testing::property_seed());
+/// One obstacle of a bit-for-bit trial, with its brute-force clearances [forecast time][sample].
+struct brute_force_case {
+  const plan_input& in;
+  const prepared& p;
+  const ego_sweep& sweep;
+  const forecast_obstacle& obstacle;
+  const std::vector<clearance_set>& brute;
+};
+
+/// Calls `check` on every obstacle of the two-obstacle trials drawn from `seed`, until an assertion
+/// fails.
+template <class Check>
+void for_each_brute_force_case(std::uint64_t seed, Check check) {
+  std::mt19937_64 rng(seed);
   const std::size_t count = testing::property_count(12);
   const std::vector<double> taus = forecast_times(planner_config{});
-  constexpr double cap = 2.0;
   for (std::size_t trial = 0; trial < count; ++trial) {
     const plan_input in = two_obstacle_scene(rng, trial);
     const prepared p = prepare(in, 0.05);
     const ego_sweep sweep(in.ego, p.samples, p.window);
     for (const forecast_obstacle& obstacle : p.obstacles) {
-      const auto fast = clearances(sweep, obstacle, taus, cap);
       const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
-      ASSERT_EQ(fast.size(), brute.size());
-      for (std::size_t i = 0; i < taus.size(); ++i) {
-        for (std::size_t m = 0; m < p.samples.size(); ++m) {
-          ASSERT_EQ(fast[i][m], std::clamp(brute[i][m], -cap, cap))
-              << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
-        }
-      }
+      check(brute_force_case{in, p, sweep, obstacle, brute}, taus);
+      if (::testing::Test::HasFatalFailure()) return;
     }
   }
+}
+
+TEST(collision_sets, fast_clearances_equal_the_clamped_brute_force_ones_bit_for_bit) {
+  constexpr double cap = 2.0;
+  for_each_brute_force_case(testing::property_seed(), [&](const brute_force_case& c, const std::vector<double>& taus) {
+    const auto fast = clearances(c.sweep, c.obstacle, taus, cap);
+    ASSERT_EQ(fast.size(), c.brute.size());
+    for (std::size_t i = 0; i < taus.size(); ++i) {
+      for (std::size_t m = 0; m < c.p.samples.size(); ++m) {
+        ASSERT_EQ(fast[i][m], std::clamp(c.brute[i][m], -cap, cap))
+            << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(c.in);
+      }
+    }
+  });
 }
 
 TEST(collision_sets, the_sign_walk_gives_every_sample_its_brute_force_sign_and_its_values_bit_for_bit) {
   // Straight after construction, before any value is asked for: a sample is negative exactly when
   // its brute-force clearance is ≤ 0, and a value the walk marked exact is the brute-force one.
-  std::mt19937_64 rng(testing::property_seed() + 3);
-  const std::size_t count = testing::property_count(12);
-  const std::vector<double> taus = forecast_times(planner_config{});
   constexpr double cap = 2.0;
   std::size_t negative = 0;
   std::size_t exact = 0;
-  for (std::size_t trial = 0; trial < count; ++trial) {
-    const plan_input in = two_obstacle_scene(rng, trial);
-    const prepared p = prepare(in, 0.05);
-    const ego_sweep sweep(in.ego, p.samples, p.window);
-    for (const forecast_obstacle& obstacle : p.obstacles) {
-      const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
-      const clearance_field field(sweep, obstacle, taus, cap);
-      for (std::size_t i = 0; i < taus.size(); ++i) {
-        for (std::size_t m = 0; m < p.samples.size(); ++m) {
-          const double truth = std::clamp(brute[i][m], -cap, cap);
-          const double walked = field.set(i)[m];
-          ASSERT_EQ(walked <= 0.0, truth <= 0.0)
-              << "tau " << taus[i] << " sample " << m << " walked " << walked << " brute force " << truth << "\n"
-              << testing::describe(in);
-          if (field.is_exact(i, m)) {
-            ASSERT_EQ(walked, truth) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
-            ++exact;
-          }
-          negative += walked <= 0.0 ? 1 : 0;
+  for_each_brute_force_case(testing::property_seed() + 3, [&](const brute_force_case& c, const std::vector<double>& taus) {
+    const clearance_field field(c.sweep, c.obstacle, taus, cap);
+    for (std::size_t i = 0; i < taus.size(); ++i) {
+      for (std::size_t m = 0; m < c.p.samples.size(); ++m) {
+        const double truth = std::clamp(c.brute[i][m], -cap, cap);
+        const double walked = field.set(i)[m];
+        ASSERT_EQ(walked <= 0.0, truth <= 0.0) << "tau " << taus[i] << " sample " << m << " walked " << walked
+                                                << " brute force " << truth << "\n"
+                                                << testing::describe(c.in);
+        if (field.is_exact(i, m)) {
+          ASSERT_EQ(walked, truth) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(c.in);
+          ++exact;
         }
+        negative += walked <= 0.0 ? 1 : 0;
       }
     }
-  }
+  });
   EXPECT_GT(negative, 0u);
   EXPECT_GT(exact, 0u);
 }
 
 TEST(collision_sets, a_bounded_query_is_exact_below_its_ceiling_and_never_hides_a_lower_clearance) {
-  std::mt19937_64 rng(testing::property_seed() + 5);
-  const std::size_t count = testing::property_count(12);
-  const std::vector<double> taus = forecast_times(planner_config{});
   constexpr double cap = 2.0;
   std::size_t below = 0;
   std::size_t above = 0;
-  for (std::size_t trial = 0; trial < count; ++trial) {
-    const plan_input in = two_obstacle_scene(rng, trial);
-    const prepared p = prepare(in, 0.05);
-    const ego_sweep sweep(in.ego, p.samples, p.window);
-    for (const forecast_obstacle& obstacle : p.obstacles) {
-      const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
-      clearance_field field(sweep, obstacle, taus, cap);
-      for (std::size_t i = 0; i < taus.size(); ++i) {
-        for (std::size_t m = 0; m < p.samples.size(); ++m) {
-          const double truth = std::clamp(brute[i][m], -cap, cap);
-          // Ceilings around the true value, asked in an order that exercises the remembered floors.
-          for (const double ceiling : {truth + 0.3, truth - 0.3, truth + 1e-6, truth - 1e-6, 0.5}) {
-            const double bounded = field.exact_below(i, m, ceiling);
-            if (truth < ceiling) {
-              ASSERT_EQ(bounded, truth) << "tau " << taus[i] << " sample " << m << " ceiling " << ceiling << "\n"
-                                        << testing::describe(in);
-              ++below;
-            } else {
-              ASSERT_GE(bounded, ceiling) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
-              ASSERT_TRUE(bounded == truth || !field.is_exact(i, m));
-              ++above;
-            }
+  for_each_brute_force_case(testing::property_seed() + 5, [&](const brute_force_case& c, const std::vector<double>& taus) {
+    clearance_field field(c.sweep, c.obstacle, taus, cap);
+    for (std::size_t i = 0; i < taus.size(); ++i) {
+      for (std::size_t m = 0; m < c.p.samples.size(); ++m) {
+        const double truth = std::clamp(c.brute[i][m], -cap, cap);
+        // Ceilings around the true value, asked in an order that exercises the remembered floors.
+        for (const double ceiling : {truth + 0.3, truth - 0.3, truth + 1e-6, truth - 1e-6, 0.5}) {
+          const double bounded = field.exact_below(i, m, ceiling);
+          if (truth < ceiling) {
+            ASSERT_EQ(bounded, truth) << "tau " << taus[i] << " sample " << m << " ceiling " << ceiling << "\n"
+                                      << testing::describe(c.in);
+            ++below;
+          } else {
+            ASSERT_GE(bounded, ceiling) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(c.in);
+            ASSERT_TRUE(bounded == truth || !field.is_exact(i, m));
+            ++above;
           }
         }
-        const bool none_below_cap =
-            std::all_of(field.set(i).begin(), field.set(i).end(), [](double c) { return c >= cap; });
-        ASSERT_EQ(field.all_at_cap(i), none_below_cap) << "tau " << taus[i] << "\n" << testing::describe(in);
       }
+      const bool none_below_cap =
+          std::all_of(field.set(i).begin(), field.set(i).end(), [&](double v) { return v >= cap; });
+      ASSERT_EQ(field.all_at_cap(i), none_below_cap) << "tau " << taus[i] << "\n" << testing::describe(c.in);
     }
-  }
+  });
   EXPECT_GT(below, 0u);
   EXPECT_GT(above, 0u);
 }
