@@ -377,12 +377,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     ++work_.bound_checks;
     if (norm(p.position - o.position) - reach_ - margin > 0.0) return false;
     ++work_.distance_evaluations;
-    if (!rectangles) return distance(p.position, p.direction, o) - margin <= 0.0;
-    const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
-    const placed_rectangle obstacle_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
-    const double face = face_separation(ego_rectangle, obstacle_rectangle);
-    if (face <= 0.0) return true;
-    return face - margin <= 0.0 && corner_distance(ego_rectangle, obstacle_rectangle) - margin <= 0.0;
+    const lower_bound at = distance_or_bound(p, o, 0.0);
+    return at.exact && at.value <= 0.0;
   };
   sign_walk walk(times.size());
   std::vector<std::uint8_t> followed(samples);
