@@ -416,17 +416,19 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
 clearance_field::obstacle_at clearance_field::obstacle_pose(std::size_t i, std::size_t k) const {
   if (k < first_straight_[i]) return turning_[k];
   if (independent_) return turning_[k];
+  return straight_after_turn(i, sweep_.times()[k]);
+}
+
+clearance_field::obstacle_at clearance_field::straight_after_turn(std::size_t i, double t) const {
   const obstacle_at& end = turn_end_[i];
-  // forecast_pose's straight part, in its order of operations.
-  return {end.position + obstacle_.motion.speed * (sweep_.times()[k] - taus_[i]) * end.direction, end.direction};
+  return {end.position + obstacle_.motion.speed * (t - taus_[i]) * end.direction, end.direction};
 }
 
 double clearance_field::clearance_at_time(std::size_t i, std::size_t m, double t) const {
   const ego_sweep::placement e = sweep_.placement_at(m, t);
   obstacle_at o;
   if (t > taus_[i] && !independent_) {
-    const obstacle_at& end = turn_end_[i];
-    o = {end.position + obstacle_.motion.speed * (t - taus_[i]) * end.direction, end.direction};
+    o = straight_after_turn(i, t);
   } else {
     const pose p = forecast_pose(obstacle_.motion, taus_[i], t);
     o = {p.position, unit_vector(p.heading)};

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "mm/collision.hpp"
+#include "mm/maneuver.hpp"
 #include "mm/maneuver_samples.hpp"
 #include "mm/sample_mask.hpp"
 
@@ -183,14 +184,15 @@ class clearance_field {
   const work& statistics() const { return work_; }
 
  private:
-  /// Obstacle placement at time index k under forecast time i.
-  struct obstacle_at {
-    vec2 position;
-    vec2 direction;
-  };
+  /// An obstacle's placement: reference point [m] and heading direction (cos, sin).
+  using obstacle_at = placement;
   /// Where the set of forecast time i is kept: 0 for all when the forecasts do not depend on τ.
   std::size_t slot(std::size_t i) const { return independent_ ? 0 : i; }
+  /// Obstacle placement at time index k under forecast time i.
   obstacle_at obstacle_pose(std::size_t i, std::size_t k) const;
+  /// Obstacle placement at a time t > τ_i under forecast time i: `forecast_pose`'s straight part,
+  /// in its order of operations.
+  obstacle_at straight_after_turn(std::size_t i, double t) const;
   /// Signed distance − margin of sample m and the obstacle under forecast time i at time t [s]:
   /// `clearance_at` bit for bit.
   double clearance_at_time(std::size_t i, std::size_t m, double t) const;
