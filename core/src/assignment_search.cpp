@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <map>
 
 #include "mm/forecast_policy.hpp"
 
@@ -44,10 +45,13 @@ forecast_assignment exhaustive_assignment_search(const assignment_problem& probl
 
 namespace {
 
-/// Coordinate ascent from `start`.
-forecast_assignment ascend(const assignment_problem& problem, std::vector<std::size_t> start, std::size_t& evaluations) {
+using room_function = std::function<double(std::span<const std::size_t>)>;
+
+/// Coordinate ascent from `start`, by `room`.
+forecast_assignment ascend(const assignment_problem& problem, const room_function& room_of, std::vector<std::size_t> start,
+                           std::size_t& evaluations) {
   forecast_assignment current{std::move(start), 0.0, 0};
-  current.room = problem.room(current.forecast_index);
+  current.room = room_of(current.forecast_index);
   ++evaluations;
   constexpr int max_sweeps = 32;
   for (int sweep = 0; sweep < max_sweeps; ++sweep) {
@@ -57,7 +61,7 @@ forecast_assignment ascend(const assignment_problem& problem, std::vector<std::s
       for (const std::size_t candidate : problem.candidates[j]) {
         if (candidate == current.forecast_index[j]) continue;
         trial[j] = candidate;
-        const double room = problem.room(trial);
+        const double room = room_of(trial);
         ++evaluations;
         if (room > current.room + tie_tolerance) {
           current.room = room;
@@ -76,12 +80,21 @@ forecast_assignment ascend(const assignment_problem& problem, std::vector<std::s
 forecast_assignment coordinate_ascent_assignment_search(const assignment_problem& problem) {
   const std::size_t n = problem.candidates.size();
   std::size_t evaluations = 0;
+  const bool rough = static_cast<bool>(problem.rough_room);
+  // Every assignment the climb meets, with what it was climbed by.
+  std::map<std::vector<std::size_t>, double> met;
+  const room_function climb = [&](std::span<const std::size_t> index) {
+    const double r = rough ? problem.rough_room(index) : problem.room(index);
+    met.emplace(std::vector<std::size_t>(index.begin(), index.end()), r);
+    return r;
+  };
 
   std::vector<std::size_t> individual(n);
   for (std::size_t j = 0; j < n; ++j) {
     double best = -1.0;
     for (const std::size_t candidate : problem.candidates[j]) {
-      const double room = problem.room_alone(j, candidate);
+      const double room = rough && problem.rough_room_alone ? problem.rough_room_alone(j, candidate)
+                                                            : problem.room_alone(j, candidate);
       ++evaluations;
       if (room > best + tie_tolerance) {
         best = room;
@@ -100,7 +113,7 @@ forecast_assignment coordinate_ascent_assignment_search(const assignment_problem
       const auto& c = problem.candidates[j];
       trial[j] = *std::prev(std::upper_bound(c.begin(), c.end(), i));  // largest allowed index ≤ i
     }
-    const double room = problem.room(trial);
+    const double room = climb(trial);
     ++evaluations;
     if (room > common_room + tie_tolerance) {
       common_room = room;
@@ -108,10 +121,26 @@ forecast_assignment coordinate_ascent_assignment_search(const assignment_problem
     }
   }
 
-  forecast_assignment a = ascend(problem, std::move(individual), evaluations);
-  forecast_assignment b = ascend(problem, std::move(common), evaluations);
-  forecast_assignment& best =
-      (b.room > a.room + tie_tolerance || (b.room >= a.room - tie_tolerance && b.forecast_index < a.forecast_index)) ? b : a;
+  forecast_assignment a = ascend(problem, climb, std::move(individual), evaluations);
+  forecast_assignment b = ascend(problem, climb, std::move(common), evaluations);
+  const auto better = [](const forecast_assignment& x, const forecast_assignment& y) {
+    return x.room > y.room + tie_tolerance || (x.room >= y.room - tie_tolerance && x.forecast_index < y.forecast_index);
+  };
+  forecast_assignment best = better(b, a) ? std::move(b) : std::move(a);
+  if (rough) {
+    // Ranked by their rooms: the assignments whose rough room came close to the best rough room.
+    double top = -1.0;
+    for (const auto& [index, r] : met) top = std::max(top, r);
+    forecast_assignment ranked;
+    ranked.room = -1.0;
+    for (const auto& [index, r] : met) {
+      if (r < top - problem.rough_margin) continue;
+      forecast_assignment candidate{index, problem.room(index), 0};
+      ++evaluations;
+      if (ranked.room < 0.0 || better(candidate, ranked)) ranked = std::move(candidate);
+    }
+    best = std::move(ranked);
+  }
   best.evaluations = evaluations;
   return best;
 }

@@ -17,6 +17,13 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
          window.margin;
 }
 
+struct ego_sweep::grid_view {
+  std::vector<std::size_t> row_start;  ///< sample index of each row's first column
+  std::vector<double> accelerations;   ///< [row] [m/s²]
+  std::vector<double> curvatures;      ///< [column] [1/m]
+  std::size_t sample(std::size_t r, std::size_t c) const { return row_start[r] + c; }
+};
+
 ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window)
     : ego_(ego),
       samples_(samples),
@@ -49,6 +56,173 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
     if (t > horizon) travel += largest_speed_ * (t - horizon);
     reach_radius_.push_back(travel * (1.0 + 1e-12) + 1e-9);
   }
+  ego_radius_ = bounding_radius(ego.shape);
+  // The blocks: the two families' grids stacked by acceleration (they share their curvatures),
+  // then their nominal-curvature columns.
+  const displacement_set& brake = samples.brake;
+  const displacement_set& accelerate = samples.accelerate;
+  const index_range brake_grid = samples.grid(family::brake);
+  const index_range accelerate_grid = samples.grid(family::accelerate);
+  const auto rows_of = [&](const displacement_set& set, std::size_t first, std::size_t stride, grid_view& g) {
+    for (std::size_t ia = 0; ia < set.acceleration_count; ++ia) {
+      g.row_start.push_back(first + ia * stride);
+      g.accelerations.push_back(samples.maneuvers[first + ia * stride].acceleration);
+    }
+  };
+  const auto curvatures_of = [&](std::size_t first, std::size_t count) {
+    std::vector<double> k;
+    for (std::size_t j = 0; j < count; ++j) k.push_back(samples.maneuvers[first + j].curvature);
+    return k;
+  };
+  std::vector<grid_view> grids;
+  if (brake_grid.size() > 0 && accelerate_grid.size() > 0 &&
+      curvatures_of(brake_grid.begin, brake.curvature_count) ==
+          curvatures_of(accelerate_grid.begin, accelerate.curvature_count)) {
+    grid_view both;
+    rows_of(brake, brake_grid.begin, brake.curvature_count, both);
+    rows_of(accelerate, accelerate_grid.begin, accelerate.curvature_count, both);
+    both.curvatures = curvatures_of(brake_grid.begin, brake.curvature_count);
+    grids.push_back(std::move(both));
+  } else {
+    for (const displacement_set* set : {&brake, &accelerate}) {
+      const index_range r = samples.grid(set->fam);
+      if (r.size() == 0) continue;
+      grid_view g;
+      rows_of(*set, r.begin, set->curvature_count, g);
+      g.curvatures = curvatures_of(r.begin, set->curvature_count);
+      grids.push_back(std::move(g));
+    }
+  }
+  grid_view nominal;
+  for (const family f : {family::brake, family::accelerate}) {
+    const index_range r = samples.nominal_column(f);
+    for (std::size_t m = r.begin; m < r.end; ++m) {
+      nominal.row_start.push_back(m);
+      nominal.accelerations.push_back(samples.maneuvers[m].acceleration);
+    }
+  }
+  if (!nominal.row_start.empty()) {
+    nominal.curvatures = {samples.nominal_curvature};
+    grids.push_back(std::move(nominal));
+  }
+  order_.reserve(sample_count_);
+  blocks_.reserve(2 * sample_count_);
+  for (const grid_view& g : grids) {
+    roots_.push_back(add_block(g, 0, g.row_start.size(), 0, g.curvatures.size()));
+  }
+}
+
+std::uint32_t ego_sweep::add_block(const grid_view& grid, std::size_t r0, std::size_t r1, std::size_t c0,
+                                   std::size_t c1) {
+  const auto index = static_cast<std::uint32_t>(blocks_.size());
+  blocks_.emplace_back();
+  const std::size_t rc = (r0 + r1 - 1) / 2;
+  const std::size_t cc = (c0 + c1 - 1) / 2;
+  block b;
+  b.begin = static_cast<std::uint32_t>(order_.size());
+  b.centre = static_cast<std::uint32_t>(grid.sample(rc, cc));
+  const double a_centre = grid.accelerations[rc];
+  const double k_centre = grid.curvatures[cc];
+  b.top_acceleration = a_centre;
+  for (std::size_t r = r0; r < r1; ++r) {
+    b.acceleration_spread = std::max(b.acceleration_spread, std::abs(grid.accelerations[r] - a_centre));
+    b.top_acceleration = std::max(b.top_acceleration, grid.accelerations[r]);
+    b.largest_deceleration = std::max(b.largest_deceleration, std::abs(grid.accelerations[r]));
+  }
+  for (std::size_t c = c0; c < c1; ++c) {
+    b.curvature_spread = std::max(b.curvature_spread, std::abs(grid.curvatures[c] - k_centre));
+    b.largest_curvature = std::max(b.largest_curvature, std::abs(grid.curvatures[c]));
+  }
+  if (r1 - r0 == 1 && c1 - c0 == 1) {
+    order_.push_back(b.centre);
+  } else {
+    // Halve the side along which the samples' placements spread more (measured at T_h).
+    const double horizon = window_.horizon;
+    const double s = travelled_distance(ego_.speed, b.top_acceleration, horizon, ego_.limits.speed_cap);
+    const double along_a = (grid.accelerations[r1 - 1] - grid.accelerations[r0]) * 0.5 * horizon * horizon;
+    const double along_k = (grid.curvatures[c1 - 1] - grid.curvatures[c0]) * s * (0.5 * s + ego_radius_);
+    const bool split_rows = c1 - c0 == 1 || (r1 - r0 > 1 && std::abs(along_a) >= std::abs(along_k));
+    if (split_rows) {
+      const std::size_t mid = (r0 + r1) / 2;
+      add_block(grid, r0, mid, c0, c1);
+      b.second = add_block(grid, mid, r1, c0, c1);
+    } else {
+      const std::size_t mid = (c0 + c1) / 2;
+      add_block(grid, r0, r1, c0, mid);
+      b.second = add_block(grid, r0, r1, mid, c1);
+    }
+  }
+  b.end = static_cast<std::uint32_t>(order_.size());
+  blocks_[index] = b;
+  return index;
+}
+
+double ego_sweep::arc_length_bound(double a, double t) const {
+  const double v0 = ego_.speed;
+  if (a < 0.0 && t * -a > v0) return v0 * v0 / (2.0 * -a);
+  return std::max(0.0, v0 * t + 0.5 * a * t * t);
+}
+
+double ego_sweep::speed_bound(double a) const { return std::clamp(ego_.speed + a * window_.horizon, 0.0, ego_.limits.speed_cap); }
+
+double ego_sweep::block_spread(const block& b, std::size_t k) const {
+  // Along a at the centre's κ, then along κ at the sample's a. With s(t) the arc length travelled
+  // (|∂s/∂a| ≤ t²/2, stopping and the speed cap included), on the arc p moves along the tangent
+  // (|∂p/∂a| ≤ t²/2), θ = κs, and |∂p/∂κ| ≤ s²/2 at fixed s; after T_h the straight part adds
+  // (t − T_h)(∂v/∂a + v κ ∂s/∂a) and (t − T_h) v s. Every point moves by at most |Δp| + R |Δθ|.
+  const double t = times_[k];
+  const double horizon = window_.horizon;
+  const double r = ego_radius_;
+  const double kappa = b.largest_curvature;
+  double along_a = 0.0;
+  double along_k = 0.0;
+  if (t <= horizon) {
+    const double s = arc_length_bound(b.top_acceleration, t);
+    along_a = 0.5 * t * t * (1.0 + r * kappa);
+    along_k = s * (0.5 * s + r);
+  } else {
+    const double straight = t - horizon;
+    const double s = arc_length_bound(b.top_acceleration, horizon);
+    const double v = speed_bound(b.top_acceleration);
+    const double half_square = 0.5 * horizon * horizon;
+    along_a = half_square * (1.0 + r * kappa) + straight * (horizon + v * kappa * half_square);
+    along_k = s * (0.5 * s + r) + v * straight * s;
+  }
+  return (b.acceleration_spread * along_a + b.curvature_spread * along_k) * (1.0 + 1e-9) + 1e-9;
+}
+
+double ego_sweep::velocity_spread(const block& b, std::size_t k) const {
+  // The velocity v(t)(cos θ, sin θ): |∂/∂a| ≤ t + v κ t²/2 and |∂/∂κ| ≤ v s (t ≤ T_h; T_h after).
+  const double t = std::min(times_[k], window_.horizon);
+  const double v = speed_bound(b.top_acceleration);
+  const double s = arc_length_bound(b.top_acceleration, t);
+  const double along_a = t + 0.5 * v * b.largest_curvature * t * t;
+  const double along_k = v * s;
+  return (b.acceleration_spread * along_a + b.curvature_spread * along_k) * (1.0 + 1e-9) + 1e-9;
+}
+
+vec2 ego_sweep::velocity(std::size_t k, std::size_t m) const {
+  const double t = std::min(times_[k], window_.horizon);
+  return speed_after(ego_.speed, samples_.maneuvers[m].acceleration, t, ego_.limits.speed_cap) * at(k, m).direction;
+}
+
+double ego_sweep::largest_acceleration(const block& b, std::size_t k) const {
+  if (times_[k] >= window_.horizon) return 0.0;
+  const double v = std::max(std::min(ego_.speed, ego_.limits.speed_cap), speed_bound(b.top_acceleration));
+  return (b.largest_deceleration + b.largest_curvature * v * v) * (1.0 + 1e-9);
+}
+
+double ego_sweep::largest_acceleration(std::size_t k, std::size_t m) const {
+  if (times_[k] >= window_.horizon) return 0.0;
+  const maneuver& u = samples_.maneuvers[m];
+  const double v = sample_speed_[m];
+  return (std::abs(u.acceleration) + std::abs(u.curvature) * v * v) * (1.0 + 1e-9);
+}
+
+double ego_sweep::turn_speed(const block& b, std::size_t k) const {
+  if (times_[k] >= window_.horizon) return 0.0;
+  return b.largest_curvature * std::max(std::min(ego_.speed, ego_.limits.speed_cap), speed_bound(b.top_acceleration)) *
+         ego_radius_;
 }
 
 ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
@@ -102,71 +276,25 @@ std::size_t first_possible(std::size_t k, double gap, double rate, double time_s
   return k + static_cast<std::size_t>(steps) + 1;
 }
 
-}  // namespace
+/// Below this many sample steps of wait from the largest rates, the raster looks at the local ones.
+constexpr std::size_t local_wait_steps = 4;
 
-struct clearance_field::sign_state {
-  std::size_t next = 0;   ///< first time index at which it can come within θ
-  bool low = false;       ///< came within θ at a sample time
-  bool negative = false;  ///< touched at a sample time, or a dip refined to ≤ 0
-  double minimum = std::numeric_limits<double>::infinity();  ///< smallest value looked at
-  dips low_dips;
-};
-
-/// The samples a sign walk follows, with their states, and per sample time the list of those to be
-/// looked at then: each sample waits in one list, that of the first time at which it can come
-/// within θ (none once it is known to collide or can no longer come within θ).
-struct clearance_field::sign_walk {
-  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
-  std::vector<std::uint32_t> sample;  ///< [j]: the sample whose state is state[j]
-  std::vector<sign_state> state;      ///< [j]
-  std::vector<std::uint32_t> link;    ///< [j]: the next in the same list
-  std::vector<std::uint32_t> head;    ///< [k]: the first waiting for time index k
-
-  explicit sign_walk(std::size_t times) : head(times, none) {}
-  void clear() {
-    sample.clear();
-    state.clear();
-    link.clear();
-    std::fill(head.begin(), head.end(), none);
+/// First time index after k at which a distance `gap` above zero could reach zero.
+std::size_t first_possible(std::size_t k, double gap, const fall_bound& fall, double time_step) {
+  if (!(gap > 0.0)) return k + 1;
+  double delta = fall.rate > 0.0 ? gap / fall.rate : std::numeric_limits<double>::infinity();
+  const double root = std::sqrt(fall.speed * fall.speed + 2.0 * fall.acceleration * gap);
+  if (fall.speed + root > 0.0) {
+    delta = std::max(delta, 2.0 * gap / (fall.speed + root));
+  } else {
+    delta = std::numeric_limits<double>::infinity();
   }
-  /// Starts following sample m in `s`; returns its index j.
-  std::uint32_t follow(std::size_t m, const sign_state& s) {
-    sample.push_back(static_cast<std::uint32_t>(m));
-    state.push_back(s);
-    link.push_back(none);
-    return static_cast<std::uint32_t>(sample.size() - 1);
-  }
-  /// State j waits for time index k (k past the last time: it is done).
-  void wait(std::size_t k, std::uint32_t j) {
-    if (k >= head.size()) return;
-    link[j] = head[k];
-    head[k] = j;
-  }
-  /// Empties the list of time index k and returns its first state.
-  std::uint32_t take(std::size_t k) {
-    const std::uint32_t j = head[k];
-    head[k] = none;
-    return j;
-  }
-};
-
-clearance_field::dip clearance_field::visit(dips& d, std::size_t k, bool looked, double value, double theta) {
-  dip confirmed;
-  if (d.candidate != dips::no_index) {
-    // The candidate is a local minimum unless the time after it is lower; a time not looked at is > θ.
-    if (d.candidate + 1 < k || !looked || value >= d.candidate_value) confirmed = {d.candidate, d.candidate_value};
-    d.candidate = dips::no_index;
-  }
-  if (looked) {
-    if (value <= theta && (d.last == dips::no_index || d.last + 1 != k || value <= d.last_value)) {
-      d.candidate = k;
-      d.candidate_value = value;
-    }
-    d.last = k;
-    d.last_value = value;
-  }
-  return confirmed;
+  const double steps = delta * (1.0 - 1e-9) / time_step;
+  if (steps >= 1e9) return std::numeric_limits<std::size_t>::max();
+  return k + static_cast<std::size_t>(steps) + 1;
 }
+
+}  // namespace
 
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                  std::span<const double> forecast_times, double cap)
@@ -177,6 +305,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   const double step = window.time_step;
   const double obstacle_radius = bounding_radius(obstacle.shape);
   obstacle_turn_speed_ = largest_point_speed(obstacle);
+  obstacle_acceleration_ = motion.speed * std::abs(motion.yaw_rate);
   distance_rate_ = sweep.largest_point_speed() + obstacle_turn_speed_;
   // Minima up to half a step's change above the cap can still refine to below it: walk exactly to there.
   walk_cap_ = cap + distance_rate_ * step / 2.0;
@@ -192,7 +321,6 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       obstacle_radius_ = d->radius;
     }
   }
-  const bool rectangles = shapes_ == shape_pair::rectangles;
   const std::size_t samples = sweep.sample_count();
   const std::size_t count = taus_.size();
 
@@ -213,203 +341,203 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   }
   const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
   sets_.assign(slots, clearance_set(samples, cap));
-  below_cap_.assign(slots, 0);
-  colliding_.assign(slots, 0);
+  sampled_.assign(slots, sample_mask(samples));
   floor_.assign(slots, {});
   exact_.assign(slots, std::vector<std::uint8_t>(samples, 0));
   prefix_.assign(samples, prefix_walk{});
   refined_.assign(samples, {});
 
-  // A sampled minimum above this refines to a positive clearance: between samples the signed
-  // distance can fall by at most L·step/2 below the nearest sample.
-  const double threshold = refinement_threshold(distance_rate_, step);
+  // The sampled collisions. The times shared by every forecast time that includes them (t_k ≤ τ:
+  // the CTRV placement) are rastered once, in order; each forecast time continues from their state
+  // at τ with its straight part. A block waits for the first time index at which one of its samples
+  // can overlap: the signed distance changes no faster than L under any forecast, so a wait
+  // computed on the shared times holds for every forecast time's straight part too.
   const double margin = window.margin;
   const vec2 start = sweep.reach_centre(0);
-  // [m]: the time index at which sample m touched the obstacle under the last forecast time that
-  // made it touch (none yet).
-  std::vector<std::uint32_t> contact(samples, sign_walk::none);
   bool near = false;
-  // Refines a confirmed dip of sample m under forecast time i: one at or below 0 makes it negative.
-  const auto settle = [&](sign_state& state, std::size_t i, std::size_t m, const dip& d) {
-    if (d.at == dips::no_index) return;
-    const double value = refined_at(i, m, d.at, d.value);
-    state.low_dips.refined = std::min(state.low_dips.refined, value);
-    if (value <= 0.0) state.negative = true;
+  // No sample can overlap the obstacle at time index k (and none comes within the walking cap).
+  const auto out_of_reach = [&](std::size_t k, const obstacle_at& o) {
+    const double gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
+    if (gap < walk_cap_) near = true;
+    return gap > 0.0;
   };
-  // Looks at the samples waiting for time index k, the obstacle placed at `o`; dips confirmed here
-  // are refined under forecast time i (at times shared by every τ when k is).
-  const auto advance = [&](std::size_t k, const obstacle_at& o, sign_walk& walk, std::size_t i) {
-    std::uint32_t j = walk.take(k);
-    const double disc_gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
-    if (disc_gap < walk_cap_) near = true;
-    if (disc_gap > threshold) {
-      // No sample can be within θ now: they all wait for the next time.
-      while (j != sign_walk::none) {
-        const std::uint32_t after = walk.link[j];
-        walk.wait(k + 1, j);
-        j = after;
-      }
-      return;
-    }
-    const placed_footprint obstacle_footprint =
-        shapes_ == shape_pair::general ? place(obstacle_.shape, o.position, o.direction) : placed_footprint{};
-    const placed_rectangle obstacle_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
-    while (j != sign_walk::none) {
-      const std::uint32_t after = walk.link[j];
-      const std::size_t m = walk.sample[j];
-      sign_state& state = walk.state[j];
-      if (state.negative) {
-        // Shown to touch at a later time before the walk came here (`touches` below).
-        j = after;
+  const std::vector<std::uint32_t>& order = sweep.order();
+  raster_state shared{sample_mask(samples), std::vector<std::uint32_t>(times.size(), raster_state::none),
+                      std::vector<std::uint32_t>(sweep.blocks().size(), raster_state::none)};
+  for (const std::uint32_t root : sweep.roots()) shared.wait(0, root);
+  std::size_t shared_done = 0;
+  raster_state own;
+  for (std::size_t i = 0; i < slots; ++i) {
+    for (; shared_done < first_straight_[i]; ++shared_done) {
+      if (out_of_reach(shared_done, turning_[shared_done])) {
+        shared.postpone(shared_done);
         continue;
       }
-      // Every time at which the clearance can be ≤ θ is looked at: a skipped one is > θ.
-      const double rate = distance_rate(m);
-      const double theta = sample_threshold(m);
-      const ego_sweep::placement p = sweep.at(k, m);
-      ++work_.bound_checks;
-      const double bound = norm(p.position - o.position) - reach_ - margin;
-      double d = 0.0;
-      bool looked = false;
-      if (bound > theta) {
-        state.next = first_possible(k, bound - theta, centre_rate(m), step);
-      } else if (rectangles) {
-        // The separation along the face normals bounds the signed distance from below (it is the
-        // signed distance when they overlap) and changes no faster than it.
-        const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
-        const double face = face_separation(ego_rectangle, obstacle_rectangle);
-        const double separation = face - margin;
-        if (separation - rounding_slack > theta) {
-          state.next = first_possible(k, separation - rounding_slack - theta, rate, step);
-        } else if (face <= 0.0) {
-          state.negative = true;
-          contact[m] = static_cast<std::uint32_t>(k);
-        } else {
-          // Apart (separation > 0): the signed distance is the corner distance.
-          d = corner_distance(ego_rectangle, obstacle_rectangle) - margin;
-          looked = true;
-        }
-      } else if (shapes_ == shape_pair::general) {
-        // The obstacle's footprint is placed once per time, not once per sample.
-        d = signed_distance(place(sweep.ego().shape, p.position, p.direction), obstacle_footprint) - margin;
-        looked = true;
-      } else {
-        d = distance(p.position, p.direction, o) - margin;
-        looked = true;
-      }
-      if (looked) {
-        ++work_.distance_evaluations;
-        if (d <= 0.0) {
-          state.negative = true;
-          contact[m] = static_cast<std::uint32_t>(k);
-        } else {
-          state.minimum = std::min(state.minimum, d);
-          if (d <= theta) state.low = true;
-          state.next = first_possible(k, d - theta, rate, step);
-        }
-      }
-      if (!state.negative) settle(state, i, m, visit(state.low_dips, k, looked, d, theta));
-      if (!state.negative) walk.wait(state.next, j);
-      j = after;
+      raster(shared_done, turning_[shared_done], shared);
     }
-  };
-  // The samples' states for the times t ≤ τ shared by every forecast time still to come.
-  sign_walk shared(times.size());
-  for (std::uint32_t m = 0; m < samples; ++m) shared.follow(m, sign_state{});
-  if (slots > 1) {
-    // One pass for every forecast time at once: a disc holding the obstacle's reference point under
-    // every τ_i at t_k bounds the distance to each of them from below, and the smallest of those
-    // distances changes no faster than the centre rate. A sample is not looked at by the walks
-    // below before the first time at which it can come within its threshold under some τ_i.
-    std::vector<std::size_t> next(samples, 0);
-    std::vector<std::size_t> first(samples, std::numeric_limits<std::size_t>::max());
-    for (std::size_t k = 0; k < times.size(); ++k) {
-      vec2 low = obstacle_pose(0, k).position;
-      vec2 high = low;
-      for (std::size_t i = 1; i < slots; ++i) {
-        const vec2 p = obstacle_pose(i, k).position;
-        low = {std::min(low.x, p.x), std::min(low.y, p.y)};
-        high = {std::max(high.x, p.x), std::max(high.y, p.y)};
+    own = shared;
+    for (std::size_t k = first_straight_[i]; k < times.size(); ++k) {
+      const obstacle_at o = obstacle_pose(i, k);
+      if (out_of_reach(k, o)) {
+        own.postpone(k);
+        continue;
       }
-      const vec2 centre = 0.5 * (low + high);
-      const double radius = 0.5 * norm(high - low) * (1.0 + 1e-12) + 1e-9;
-      if (norm(centre - start) - radius - sweep.reach_radius(k) - reach_ - margin > threshold) continue;
-      for (std::size_t m = 0; m < samples; ++m) {
-        if (next[m] > k) continue;
-        const double own_threshold = sample_threshold(m);
-        ++work_.bound_checks;
-        const double bound = norm(sweep.at(k, m).position - centre) - radius - reach_ - margin;
-        if (bound > own_threshold) {
-          next[m] = first_possible(k, bound - own_threshold, centre_rate(m), step);
-        } else {
-          first[m] = k;
-          next[m] = std::numeric_limits<std::size_t>::max();
-        }
-      }
+      raster(k, o, own);
     }
-    for (std::uint32_t m = 0; m < samples; ++m) shared.wait(first[m], m);
-  } else {
-    for (std::uint32_t m = 0; m < samples; ++m) shared.wait(0, m);
-  }
-  // Refines the dip still waiting for the time after it (every later time was > θ) and writes what
-  // the walk found of sample m under forecast time i: negative, or the exact value of a sample that
-  // came within θ; otherwise the +cap placeholder stays.
-  const auto conclude = [&](std::size_t i, std::size_t m, sign_state state) {
-    if (!state.negative) settle(state, i, m, finish(state.low_dips));
-    if (state.negative) {
-      sets_[i][m] = -cap;
-      ++below_cap_[i];
-      ++colliding_[i];
-    } else if (state.low) {
-      // Every time ≤ θ was looked at and every dip refined: this is the clearance.
-      const double c = std::clamp(std::min(state.minimum, state.low_dips.refined), -cap, cap);
-      ++work_.exact_values;
-      if (c < cap) ++below_cap_[i];
-      sets_[i][m] = c;
-      exact_[i][m] = 1;
-    }
-  };
-  // Whether sample m touches the obstacle at time index k under forecast time i: the signed
-  // distance at a sample time, less the margin, is ≤ 0 (then so is the clearance).
-  const auto touches = [&](std::size_t i, std::size_t k, std::size_t m) {
-    const obstacle_at o = obstacle_pose(i, k);
-    const ego_sweep::placement p = sweep.at(k, m);
-    ++work_.bound_checks;
-    if (norm(p.position - o.position) - reach_ - margin > 0.0) return false;
-    ++work_.distance_evaluations;
-    const lower_bound at = distance_or_bound(p, o, 0.0);
-    return at.exact && at.value <= 0.0;
-  };
-  sign_walk walk(times.size());
-  std::vector<std::uint8_t> followed(samples);
-  std::size_t shared_until = 0;
-  for (std::size_t i = 0; i < slots; ++i) {
-    for (; shared_until < first_straight_[i]; ++shared_until) advance(shared_until, turning_[shared_until], shared, i);
-    // This τ's straight part, for the samples still waiting: a copy of their shared states.
-    walk.clear();
-    std::fill(followed.begin(), followed.end(), std::uint8_t{0});
-    // A sample that touched under an earlier forecast time, at a time after the one it waits for,
-    // is tried at that time first: neighbouring forecasts differ little, and one touch at a sample
-    // time decides the sign without walking to it.
-    for (std::size_t k = shared_until; k < times.size(); ++k) {
-      for (std::uint32_t j = shared.head[k]; j != sign_walk::none; j = shared.link[j]) {
-        const std::uint32_t m = shared.sample[j];
-        const std::uint32_t copy = walk.follow(m, shared.state[j]);
-        walk.wait(k, copy);
-        followed[m] = 1;
-        if (contact[m] != sign_walk::none && contact[m] > k && touches(i, contact[m], m)) walk.state[copy].negative = true;
-      }
-    }
-    for (std::size_t k = shared_until; k < times.size(); ++k) advance(k, obstacle_pose(i, k), walk, i);
-    for (std::size_t j = 0; j < walk.sample.size(); ++j) conclude(i, walk.sample[j], walk.state[j]);
-    for (std::uint32_t m = 0; m < samples; ++m) {
-      if (!followed[m]) conclude(i, m, shared.state[m]);
-    }
+    own.hit.for_each([&](std::size_t p) {
+      sampled_[i].set(order[p]);
+      sets_[i][order[p]] = -cap;
+    });
   }
   if (!near) {
     // Never within the walking cap of any sample: every clearance is exactly +cap.
     inert_ = true;
     for (auto& e : exact_) std::fill(e.begin(), e.end(), std::uint8_t{1});
+  }
+}
+
+clearance_field::falls clearance_field::local_falls(vec2 ego_velocity, double velocity_spread, double turn_speed,
+                                                    double ego_acceleration, const obstacle_at& o, double centre_rate,
+                                                    double distance_rate) const {
+  const double relative = norm(ego_velocity - obstacle_.motion.speed * o.direction) + velocity_spread;
+  const double acceleration = ego_acceleration + obstacle_acceleration_;
+  return {{centre_rate, relative, acceleration},
+          {distance_rate, relative + turn_speed + obstacle_turn_speed_ - obstacle_.motion.speed, acceleration}};
+}
+
+std::uint32_t clearance_field::until_second_order(std::size_t k, double gap, double change, double curvature) const {
+  // gap + change·Δ − curvature·Δ²/2 > 0 before the positive root.
+  constexpr std::uint32_t never = std::numeric_limits<std::uint32_t>::max();
+  if (!(gap > 0.0) || !(curvature > 0.0)) return static_cast<std::uint32_t>(k + 1);
+  const double root = (change + std::sqrt(change * change + 2.0 * curvature * gap)) / curvature;
+  const double steps = root * (1.0 - 1e-9) / sweep_.window().time_step;
+  if (!(steps < 1e9)) return never;
+  return static_cast<std::uint32_t>(std::min<std::size_t>(k + static_cast<std::size_t>(steps) + 1, never));
+}
+
+void clearance_field::raster(std::size_t k, const obstacle_at& o, raster_state& state) {
+  const placed_rectangle rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
+  const placed_footprint placed =
+      shapes_ == shape_pair::general ? place(obstacle_.shape, o.position, o.direction) : placed_footprint{};
+  const placed_obstacle at{o, rectangle, placed};
+  for (std::uint32_t j = state.take(k); j != raster_state::none;) {
+    const std::uint32_t after = state.link[j];
+    raster_block(j, k, at, state);
+    j = after;
+  }
+}
+
+void clearance_field::raster_state::wait(std::size_t k, std::uint32_t block) {
+  if (k >= head.size()) return;
+  link[block] = head[k];
+  head[k] = block;
+}
+
+std::uint32_t clearance_field::raster_state::take(std::size_t k) {
+  const std::uint32_t first = head[k];
+  head[k] = none;
+  return first;
+}
+
+void clearance_field::raster_state::postpone(std::size_t k) {
+  for (std::uint32_t j = take(k); j != none;) {
+    const std::uint32_t after = link[j];
+    wait(k + 1, j);
+    j = after;
+  }
+}
+
+void clearance_field::raster_block(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state) {
+  const ego_sweep::block& b = sweep_.blocks()[index];
+  if (state.hit.all_in(b.begin, b.end)) return;
+  const double margin = sweep_.window().margin;
+  const double step = sweep_.window().time_step;
+  const ego_sweep::placement p = sweep_.at(k, b.centre);
+  const bool single = b.second == 0;
+  const double spread = single ? 0.0 : sweep_.block_spread(b, k);
+  ++work_.bound_checks;
+  // The wait for a gap [m] above zero: from the largest rates over the window, or, where that is
+  // short, from how far the distances of the block's samples can fall from now on.
+  const auto until = [&](double gap, bool centres) {
+    const double rate = single ? (centres ? centre_rate(b.centre) : distance_rate(b.centre))
+                               : (centres ? centre_rate_ : distance_rate_);
+    std::size_t next = first_possible(k, gap, rate, step);
+    if (next < k + local_wait_steps) {
+      const falls fall =
+          single ? local_falls(sweep_.velocity(k, b.centre), 0.0, sweep_.turn_speed(k, b.centre),
+                               sweep_.largest_acceleration(k, b.centre), o.at, rate, rate)
+                 : local_falls(sweep_.velocity(k, b.centre), sweep_.velocity_spread(b, k), sweep_.turn_speed(b, k),
+                               sweep_.largest_acceleration(b, k), o.at, rate, rate);
+      next = first_possible(k, gap, centres ? fall.centres : fall.distances, step);
+    }
+    return next;
+  };
+  // Every sample of the block is within `spread` of the centre's placement: its signed distance −
+  // margin lies in [low − spread, high + spread], with low and high bounds of the centre's.
+  const vec2 apart = p.position - o.at.position;
+  const double centres = norm(apart);
+  const double disc = centres - reach_ - margin - spread;
+  if (disc > 0.0) {
+    std::size_t next = until(disc, true);
+    if (next < k + local_wait_steps) {
+      // The samples' reference-point distances D to the obstacle's, from how fast the centre's
+      // changes now: D(t_k + Δ) ≥ D − spread + (Ḋ − correction) Δ − M Δ²/2, where while D ≥ the
+      // reach, D̈ ≤ |ṙ|²/D + |r̈| ≤ M. Long waits for an obstacle that moves away.
+      const double level = reach_ + margin;
+      const vec2 closing = sweep_.velocity(k, b.centre) - obstacle_.motion.speed * o.at.direction;
+      const double rate = single ? centre_rate(b.centre) : centre_rate_;
+      const double velocity_spread = single ? 0.0 : sweep_.velocity_spread(b, k);
+      const double change = dot(apart, closing) / centres - velocity_spread - 2.0 * spread * norm(closing) / centres;
+      const double curvature =
+          rate * rate / level + (single ? sweep_.largest_acceleration(k, b.centre) : sweep_.largest_acceleration(b, k)) +
+          obstacle_acceleration_;
+      next = std::max<std::size_t>(next, until_second_order(k, disc, change, curvature));
+    }
+    state.wait(next, index);
+    return;
+  }
+  double low = 0.0;
+  double high = std::numeric_limits<double>::infinity();
+  if (shapes_ == shape_pair::rectangles) {
+    const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
+    const double face = face_separation(ego_rectangle, o.rectangle);
+    low = face - margin - rounding_slack;
+    if (face <= 0.0) {
+      high = face - margin;
+    } else if (single ? low <= 0.0 : face + spread < margin) {
+      // Apart, but the margin can still make it (or the whole block) overlap: the exact distance.
+      ++work_.distance_evaluations;
+      high = corner_distance(ego_rectangle, o.rectangle) - margin;
+      low = high;
+    }
+  } else {
+    ++work_.distance_evaluations;
+    const double d = shapes_ == shape_pair::general
+                         ? signed_distance(place(sweep_.ego().shape, p.position, p.direction), o.footprint)
+                         : distance(p.position, p.direction, o.at);
+    low = d - margin;
+    high = low;
+  }
+  const auto mark_all = [&] {
+    for (std::size_t q = b.begin; q < b.end; ++q) state.hit.set(q);
+  };
+  if (single) {
+    // A single sample: `clearance_at` ≤ 0, bit for bit.
+    if (high <= 0.0) {
+      mark_all();
+    } else {
+      state.wait(until(low, false), index);
+    }
+    return;
+  }
+  if (low - spread > 0.0) {
+    state.wait(until(low - spread, false), index);
+  } else if (high + spread + rounding_slack <= 0.0) {
+    mark_all();
+  } else {
+    // Undecided as a whole: its halves wait on their own from now on.
+    raster_block(index + 1, k, o, state);
+    raster_block(b.second, k, o, state);
   }
 }
 
@@ -476,13 +604,6 @@ double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, 
   return value;
 }
 
-clearance_field::dip clearance_field::finish(dips& d) {
-  dip pending;
-  if (d.candidate != dips::no_index) pending = {d.candidate, d.candidate_value};
-  d.candidate = dips::no_index;
-  return pending;
-}
-
 double clearance_field::exact(std::size_t forecast, std::size_t m) {
   const std::size_t i = slot(forecast);
   if (exact_[i][m]) return sets_[i][m];
@@ -491,60 +612,34 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   const double margin = sweep_.window().margin;
   const double centre = centre_rate(m);
   const double rate = distance_rate(m);
-  const double theta = sample_threshold(m);
-  // Below this a time can matter: under the running minimum, or ≤ θ while nothing has touched
-  // (then every dip ≤ θ is refined).
-  const auto level = [&](const running_minimum& r) {
-    const double known = std::min(r.value, walk_cap_);
-    return r.value > 0.0 ? std::max(known, theta) : known;
-  };
-  const auto settle = [&](dips& low, const dip& d) {
-    if (d.at != dips::no_index) low.refined = std::min(low.refined, refined_at(i, m, d.at, d.value));
-  };
-  // Looks at time index k and returns the next one that can matter.
-  const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r, dips& low) {
+  // Looks at time index k and returns the next one that can be below the running minimum (or the
+  // walking cap: above it every value clamps to the cap).
+  const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r) {
     const double known = std::min(r.value, walk_cap_);
     if (known <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
     const ego_sweep::placement p = sweep_.at(k, m);
     ++work_.bound_checks;
     const double bound = norm(p.position - o.position) - reach_ - margin;
-    if (bound >= known && (r.value <= 0.0 || bound > theta)) {
-      if (r.value > 0.0) settle(low, visit(low, k, false, 0.0, theta));
-      return first_possible(k, bound - level(r), centre, step);
-    }
-    // A lower bound of at least this leaves the running minimum and the dips as they are.
-    const double enough = r.value > 0.0 ? std::max(known, std::nextafter(theta, walk_cap_)) : known;
-    const lower_bound at = distance_or_bound(p, o, enough);
-    if (!at.exact) {
-      if (r.value > 0.0) settle(low, visit(low, k, false, 0.0, theta));
-      return first_possible(k, at.value - level(r), rate, step);
-    }
-    const double d = at.value;
-    r.update(d, k);
+    if (bound >= known) return first_possible(k, bound - known, centre, step);
+    const lower_bound at = distance_or_bound(p, o, known);
+    if (!at.exact) return first_possible(k, at.value - known, rate, step);
     ++work_.distance_evaluations;
-    if (r.value > 0.0) settle(low, visit(low, k, true, d, theta));
-    return first_possible(k, d - level(r), rate, step);
+    r.update(at.value, k);
+    return first_possible(k, at.value - std::min(r.value, walk_cap_), rate, step);
   };
   // The shared times first (kept for larger τ), then this τ's straight part.
   prefix_walk& prefix = prefix_[m];
   const std::size_t shared = first_straight_[i];
   if (prefix.until > shared) prefix = prefix_walk{};
-  for (; prefix.next < shared; prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum, prefix.low)) {
+  for (; prefix.next < shared; prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum)) {
   }
   prefix.until = shared;
   running_minimum r = prefix.minimum;
-  dips low = prefix.low;
-  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r, low);
+  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r);
   double c = r.value;
-  if (c > 0.0 && c <= theta) {
-    settle(low, finish(low));
-    c = std::min(c, low.refined);
-  } else if (c > -walk_cap_ && c < walk_cap_) {
-    c = std::min(c, refined_at(i, m, r.argmin, r.at_argmin));
-  }
+  if (c > -walk_cap_ && c < walk_cap_) c = std::min(c, refined_at(i, m, r.argmin, r.at_argmin));
   c = std::clamp(c, -cap_, cap_);
   ++work_.exact_values;
-  if (sets_[i][m] >= cap_ && c < cap_) ++below_cap_[i];
   sets_[i][m] = c;
   exact_[i][m] = 1;
   return c;
@@ -562,6 +657,7 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   // at or above the ceiling: between samples the signed distance falls by at most L·step/2.
   const double limit = ceiling + refinement_threshold(rate, step);
   if (limit >= walk_cap_) return exact(forecast, m);  // the exact walk prunes as much
+  if (const double below_all = floor_of_all(m); below_all >= ceiling) return below_all;
   std::vector<double>& floor = floor_[i];
   if (!floor.empty() && floor[m] >= ceiling) return floor[m];
   std::size_t k = 0;
@@ -593,6 +689,36 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   return ceiling;
 }
 
+double clearance_field::floor_of_all(std::size_t m) {
+  if (floor_all_.empty()) floor_all_.assign(sweep_.sample_count(), std::numeric_limits<double>::quiet_NaN());
+  double& floor = floor_all_[m];
+  if (!std::isnan(floor)) return floor;
+  // Under every forecast the obstacle's heading is within |ω| s of the start's at time s, so its
+  // reference point is within v |ω| t²/2 (and 2 v t) of the straight line at time t.
+  const motion_estimate& motion = obstacle_.motion;
+  const vec2 start = motion.pose.position;
+  const vec2 along = unit_vector(motion.pose.heading);
+  const double turn = motion.speed * std::abs(motion.yaw_rate);
+  const std::vector<double>& times = sweep_.times();
+  const double step = sweep_.window().time_step;
+  const double margin = sweep_.window().margin;
+  // The disc's centre moves at v and its radius grows at most at v |ω| T_c.
+  const double rate = centre_rate(m) + turn * sweep_.window().duration;
+  double low = walk_cap_;
+  for (std::size_t k = 0; k < times.size();) {
+    const double t = times[k];
+    const double radius = std::min(0.5 * turn * t * t, 2.0 * motion.speed * t) * (1.0 + 1e-12) + 1e-9;
+    ++work_.bound_checks;
+    const double bound =
+        norm(sweep_.at(k, m).position - (start + (motion.speed * t) * along)) - radius - reach_ - margin;
+    low = std::min(low, bound);
+    k = first_possible(k, bound - low, rate, step);
+  }
+  // Between sample times the signed distance falls by at most θ.
+  floor = low - sample_threshold(m);
+  return floor;
+}
+
 void clearance_field::make_all_exact() {
   for (std::size_t i = 0; i < sets_.size(); ++i) {
     for (std::size_t m = 0; m < sets_[i].size(); ++m) exact(i, m);
@@ -616,32 +742,37 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
   std::vector<clearance_set> result;
   for (const double tau : forecast_times) {
     clearance_set clearance(samples.size());
-    std::vector<double> d(times.size());
     for (std::size_t m = 0; m < samples.size(); ++m) {
       const maneuver& u = samples.maneuvers[m];
       const auto at = [&](double t) { return clearance_at(ego, u, obstacle, tau, t, window); };
-      const double theta = refinement_threshold(
-          largest_point_speed(ego, u, window.horizon) + largest_point_speed(obstacle), window.time_step);
       running_minimum r;
-      for (std::size_t k = 0; k < times.size(); ++k) {
-        d[k] = at(times[k]);
-        r.update(d[k], k);
-      }
-      double c = r.value;
-      if (c > 0.0 && c <= theta) {
-        // Passes within θ without touching at a sample time: refine every dip ≤ θ.
-        for (std::size_t j = 0; j < times.size(); ++j) {
-          const bool dip = d[j] <= theta && (j == 0 || d[j] <= d[j - 1]) && (j + 1 == times.size() || d[j] <= d[j + 1]);
-          if (dip) c = std::min(c, refined_minimum(times, j, at, d[j]));
-        }
-      } else {
-        c = std::min(c, refined_minimum(times, r.argmin, at, r.at_argmin));
-      }
-      clearance[m] = c;
+      for (std::size_t k = 0; k < times.size(); ++k) r.update(at(times[k]), k);
+      clearance[m] = std::min(r.value, refined_minimum(times, r.argmin, at, r.at_argmin));
     }
     result.push_back(std::move(clearance));
   }
   return result;
+}
+
+std::vector<sample_mask> sampled_collisions_reference(const ego_state& ego, const maneuver_samples& samples,
+                                                      const forecast_obstacle& obstacle,
+                                                      std::span<const double> forecast_times,
+                                                      const collision_window& window) {
+  const std::vector<double> times = sample_times(window.duration, window.time_step);
+  std::vector<sample_mask> sets;
+  for (const double tau : forecast_times) {
+    sample_mask set(samples.size());
+    for (std::size_t m = 0; m < samples.size(); ++m) {
+      for (const double t : times) {
+        if (clearance_at(ego, samples.maneuvers[m], obstacle, tau, t, window) <= 0.0) {
+          set.set(m);
+          break;
+        }
+      }
+    }
+    sets.push_back(std::move(set));
+  }
+  return sets;
 }
 
 std::vector<sample_mask> collision_sets_reference(const ego_state& ego, const maneuver_samples& samples,

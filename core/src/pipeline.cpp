@@ -60,10 +60,10 @@ class evaluator {
     return c;
   }
 
-  /// max(MI−, MI+) with obstacle j alone at forecast index i.
-  double room_alone(std::size_t j, std::size_t i) {
+  /// max(MI−, MI+) with obstacle j alone at forecast index i; `rough` as in `room_of`.
+  double room_alone(std::size_t j, std::size_t i, bool rough) {
     const std::pair<std::size_t, std::size_t> part{j, i};
-    combined_parts(std::span(&part, 1), scratch_set_);
+    combined_parts(std::span(&part, 1), scratch_set_, rough);
     return room(scratch_set_);
   }
 
@@ -83,8 +83,10 @@ class evaluator {
 
   /// max(MI−, MI+) under an assignment, remembered: obstacles whose forecast time changes nothing
   /// (inert, or not turning) count as forecast index 0, so assignments that differ only there are
-  /// computed once.
-  double room_of(std::span<const std::size_t> index) {
+  /// computed once. `rough` (fast path): from the signs alone, the boundary through the middle of
+  /// every edge whose ends differ — what the fast forecast-time search ranks assignments by; the
+  /// assignment it selects is then evaluated with values.
+  double room_of(std::span<const std::size_t> index, bool rough) {
     std::vector<std::size_t>& key = scratch_key_;
     key.assign(index.begin(), index.end());
     if (!reference_) {
@@ -92,8 +94,9 @@ class evaluator {
         if (fields_[j].inert() || fields_[j].forecast_independent()) key[j] = 0;
       }
     }
+    if (!reference_ && rough) key.push_back(rough_key);
     if (const auto it = rooms_.find(key); it != rooms_.end()) return it->second;
-    combine_into(index, scratch_set_);
+    combine_into(index, scratch_set_, rough);
     const double r = room(scratch_set_);
     rooms_.emplace(key, r);
     return r;
@@ -122,7 +125,16 @@ class evaluator {
       work.distance_evaluations += w.distance_evaluations;
       work.refinements += w.refinements;
     }
-    work.assignments_evaluated += rooms_.size();
+    std::size_t assignments = 0;
+    for (const auto& [key, room] : rooms_) {
+      // A rough room's key ends in `rough_key`; the same assignment's room, if computed too, is not counted again.
+      if (key.empty() || key.back() != rough_key) {
+        ++assignments;
+      } else if (!rooms_.contains(std::vector<std::size_t>(key.begin(), key.end() - 1))) {
+        ++assignments;
+      }
+    }
+    work.assignments_evaluated += assignments;
   }
 
   sample_mask colliding(const clearance_set& c) const {
@@ -134,34 +146,73 @@ class evaluator {
   }
 
  private:
-  /// `combined` into `c`, with the parts list in a buffer kept between calls.
-  void combine_into(std::span<const std::size_t> index, clearance_set& c) {
+  /// `combined` into `c`, with the parts list in a buffer kept between calls; `rough`: signs only.
+  void combine_into(std::span<const std::size_t> index, clearance_set& c, bool rough = false) {
     scratch_parts_.clear();
     for (std::size_t j = 0; j < index.size(); ++j) scratch_parts_.emplace_back(j, index[j]);
-    combined_parts(scratch_parts_, c);
+    combined_parts(scratch_parts_, c, rough);
   }
 
-  /// The sample-wise minimum over `parts` (obstacle, forecast index), into `c`.
-  void combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
-    // Fast-path values lie in [−cap, cap] and an inert field is +cap everywhere: starting from the
-    // cap and skipping inert fields gives the same minimum.
-    const bool from_cap = !reference_ && !parts.empty();
-    c.assign(samples_.size(), from_cap ? clearance_cap : std::numeric_limits<double>::infinity());
-    for (const auto& [j, i] : parts) {
-      if (from_cap && (fields_[j].inert() || fields_[j].all_at_cap(i))) continue;
-      const clearance_set& part = reference_ ? reference_sets_[j][i] : fields_[j].set(i);
-      for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], part[m]);
+  /// The sample-wise minimum over `parts` (obstacle, forecast index), into `c`; `rough` (fast path):
+  /// the ±cap of the sampled collisions only, no values.
+  void combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c,
+                      bool rough = false) {
+    if (reference_) {
+      c.assign(samples_.size(), std::numeric_limits<double>::infinity());
+      for (const auto& [j, i] : parts) {
+        const clearance_set& part = reference_sets_[j][i];
+        for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], part[m]);
+      }
+      return;
     }
-    if (!reference_) make_read_values_exact(parts, c);
+    // The signs of the sampled collisions, ±cap: the values come where the indices read them.
+    c.assign(samples_.size(), clearance_cap);
+    for (const auto& [j, i] : parts) {
+      if (fields_[j].inert()) continue;
+      fields_[j].sampled_collisions(i).for_each([&](std::size_t m) { c[m] = -clearance_cap; });
+    }
+    if (!rough) make_read_values_exact(parts, c);
+  }
+
+  /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap): the
+  /// obstacles that collide there first, then the others, closest first, each asked only below the
+  /// minimum so far.
+  double exact_minimum(std::span<const std::pair<std::size_t, std::size_t>> parts, std::size_t m) {
+    if (parts.size() == 1) {
+      const auto [j, i] = parts.front();
+      return fields_[j].inert() ? clearance_cap : fields_[j].exact(i, m);  // nothing to prune against
+    }
+    double value = clearance_cap;
+    candidates_.clear();
+    for (std::size_t p = 0; p < parts.size(); ++p) {
+      const auto [j, i] = parts[p];
+      clearance_field& field = fields_[j];
+      if (field.inert()) continue;
+      if (field.is_exact(i, m) || field.sampled_collisions(i).test(m)) {
+        value = std::min(value, field.exact(i, m));
+      } else if (const double floor = field.floor_of_all(m); floor < clearance_cap) {
+        candidates_.emplace_back(floor, p);
+      }
+    }
+    std::sort(candidates_.begin(), candidates_.end());
+    for (const auto& [floor, p] : candidates_) {
+      if (floor >= value) break;  // neither it nor the farther ones can lower the minimum
+      const auto [j, i] = parts[p];
+      value = std::min(value, fields_[j].exact_below(i, m, value));
+    }
+    return value;
   }
 
   /// Replaces the placeholders (±cap) by the exact minimum over the obstacles wherever the
   /// interpolating indices read a value: at both ends of every grid edge whose ends differ in sign,
   /// and at the four corners of saddle cells (whose centre value decides them). Elsewhere a cell
-  /// reads signs only (`positive_fraction`).
+  /// reads signs only (`positive_fraction`). A sample that overlaps no obstacle at a sample time
+  /// but whose exact clearance is ≤ 0 (a contact between sample times) collides: its other
+  /// neighbours are read in turn, until the boundary is where the exact values put it.
   void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
     const std::size_t size = c.size();
     positive_.resize(size);
+    valued_.assign(size, 0);
     std::size_t positives = 0;
     {
       // Raw pointers: a store through std::uint8_t may alias anything, vector members included.
@@ -173,7 +224,27 @@ class evaluator {
         positives += p ? 1 : 0;
       }
     }
-    if (positives == 0 || positives == size) return;  // one sign everywhere: nothing is read
+    for (bool changed = true; changed;) {
+      changed = false;
+      if (positives == 0 || positives == size) return;  // one sign everywhere: nothing is read
+      mark_read_nodes();
+      for (std::size_t m = 0; m < size; ++m) {
+        if (!read_[m] || valued_[m]) continue;
+        valued_[m] = 1;
+        c[m] = exact_minimum(parts, m);
+        if (positive_[m] && !(c[m] > 0.0)) {
+          positive_[m] = 0;
+          --positives;
+          changed = true;
+        }
+      }
+    }
+  }
+
+  /// `read_[m]` = 1 where the interpolating indices read the value of sample m under the signs
+  /// `positive_`: the ends of sign-changing grid edges and the corners of saddle cells.
+  void mark_read_nodes() {
+    const std::size_t size = positive_.size();
     read_.assign(size, 0);
     const std::uint8_t* positive = positive_.data();
     std::uint8_t* read = read_.data();
@@ -200,42 +271,21 @@ class evaluator {
         }
       }
     }
-    for (std::size_t m = 0; m < c.size(); ++m) {
-      if (!read_[m]) continue;
-      if (c[m] > 0.0) {
-        // Positive: every obstacle is positive here and the minimum needs all of them. The
-        // placeholders are +cap, so c[m] is already the minimum of the exact values known; the
-        // others are needed only where they can go below it.
-        double value = c[m];
-        for (const auto& [j, i] : parts) {
-          clearance_field& field = fields_[j];
-          if (!field.inert() && !field.is_exact(i, m)) value = std::min(value, field.exact_below(i, m, value));
-        }
-        c[m] = value;
-      } else {
-        // Negative: decided by the obstacles that collide here.
-        double value = clearance_cap;
-        for (const auto& [j, i] : parts) {
-          clearance_field& field = fields_[j];
-          if (field.inert()) continue;
-          const double part = field.set(i)[m];
-          value = std::min(value, field.is_exact(i, m) || part > 0.0 ? part : field.exact(i, m));
-        }
-        c[m] = value;
-      }
-    }
   }
 
   const maneuver_samples& samples_;
   bool reference_;
   std::vector<std::vector<clearance_set>> reference_sets_;
   std::deque<clearance_field> fields_;
-  std::map<std::vector<std::size_t>, double> rooms_;
+  std::map<std::vector<std::size_t>, double> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
+  static constexpr std::size_t rough_key = std::numeric_limits<std::size_t>::max();
   std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
   std::vector<std::size_t> scratch_key_;
   clearance_set scratch_set_;
   std::vector<std::uint8_t> positive_;  ///< scratch of make_read_values_exact: [m] is positive
   std::vector<std::uint8_t> read_;      ///< scratch of make_read_values_exact: [m] needs a value
+  std::vector<std::uint8_t> valued_;    ///< scratch of make_read_values_exact: [m] has its exact value
+  std::vector<std::pair<double, std::size_t>> candidates_;  ///< scratch of exact_minimum: (floor, part)
 };
 
 }  // namespace
@@ -341,12 +391,18 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     }
     problem.candidates.push_back(std::move(allowed));
   }
-  problem.room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index); };
+  // The fast search climbs by rough rooms (signs only) and ranks the best of what it met by their
+  // rooms; the exhaustive one, the reference, by the rooms alone.
+  problem.room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, false); };
+  if (!options.reference) {
+    problem.rough_room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, true); };
+    problem.rough_room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, true); };
+  }
   std::map<std::pair<std::size_t, std::size_t>, double> alone;
   problem.room_alone = [&](std::size_t j, std::size_t i) {
     const auto key = std::make_pair(j, i);
     if (const auto it = alone.find(key); it != alone.end()) return it->second;
-    const double r = evaluate.room_alone(j, i);
+    const double r = evaluate.room_alone(j, i, false);
     alone.emplace(key, r);
     return r;
   };

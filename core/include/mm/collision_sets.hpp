@@ -24,15 +24,12 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
 /// executing the sample and an obstacle over the collision window. Negative ⇔ the sample collides
 /// [CSS]; the magnitude lets estimators place the boundary between samples. Clamped to ±cap.
 ///
-/// Precisely, with d_k the signed distance − margin at the sample times t_k (`sample_times`) and
-/// θ = `refinement_threshold` of the pair (how far d can fall between a sample time and the
-/// nearest other time):
-/// - if min_k d_k ≤ 0 or min_k d_k > θ: min(min_k d_k, `refined_minimum` around the argmin);
-/// - otherwise (it passes within θ without touching at a sample time): min(min_k d_k, the
-///   `refined_minimum` around every local minimum d_j ≤ θ of the sampled sequence) — d_j ≤ d_{j±1}
-///   where those exist. Every dip that could reach 0 between samples is refined, so the sign is
-///   that of the continuous-time minimum; and a walk that looks at every time at which d can be ≤ θ
-///   sees every such dip, in any order.
+/// Precisely, with d_k the signed distance − margin at the sample times t_k (`sample_times`):
+/// min(min_k d_k, `refined_minimum` around the argmin of the d_k). The refinement searches the two
+/// steps around the sampled minimum, so the clearance is a value the signed distance really takes,
+/// at or below every sampled one. Whether a sample collides is decided by the samples
+/// (`clearance_field::sampled_collisions`) and, next to a colliding sample, by this value
+/// (docs/method.md §4.4).
 using clearance_set = std::vector<double>;
 
 /// Largest speed [m/s] of the ego's reference point executing `u` over the window: v_max, the larger
@@ -55,6 +52,12 @@ double refinement_threshold(double rate, double time_step);
 /// shared by all obstacles and forecast times of a planning step. Placements are computed lazily,
 /// the first time a (sample, sample time) pair is asked for, and kept; on the straight part
 /// (t > T_h) they cost no trigonometry. Every placement equals `maneuver_placement` bit for bit.
+///
+/// The samples are also arranged in a tree of blocks (`block`): rectangles of neighbouring nodes of
+/// a grid, halved along their longer side down to single samples, with a bound on how far apart
+/// the placements of a block's samples can be at each sample time (`block_spread`). A collision
+/// test of a block's centre sample then decides the whole block at once when its clearance is
+/// farther from zero than that spread.
 ///
 /// Holds mutable caches: one sweep must not be used by two threads at once.
 class ego_sweep {
@@ -93,8 +96,56 @@ class ego_sweep {
   vec2 reach_centre(std::size_t) const { return ego_.pose.position; }
   double reach_radius(std::size_t k) const { return reach_radius_[k]; }
 
+  /// A rectangle of grid nodes: rows (accelerations) × columns (curvatures) of the two families'
+  /// grids stacked (both have the same curvatures), or of their nominal-curvature columns. Its
+  /// samples are `order()[begin, end)`; a block of several samples is followed by its first half,
+  /// and `second` is the index of its other half (0 for a single sample).
+  struct block {
+    std::uint32_t begin = 0;
+    std::uint32_t end = 0;
+    std::uint32_t centre = 0;          ///< the sample at its middle node
+    std::uint32_t second = 0;
+    double acceleration_spread = 0.0;  ///< largest |a − a_centre| over the block [m/s²]
+    double curvature_spread = 0.0;     ///< largest |κ − κ_centre| over the block [1/m]
+    double top_acceleration = 0.0;     ///< largest a of the block [m/s²]
+    double largest_deceleration = 0.0; ///< largest |a| of the block [m/s²]
+    double largest_curvature = 0.0;    ///< largest |κ| of the block [1/m]
+  };
+  const std::vector<block>& blocks() const { return blocks_; }
+  /// The blocks that hold every sample once: one per grid.
+  const std::vector<std::uint32_t>& roots() const { return roots_; }
+  /// The samples in tree order: every block is a contiguous range of it.
+  const std::vector<std::uint32_t>& order() const { return order_; }
+  /// Most any point of the ego footprint can be from the same point of the footprint of the block's
+  /// centre sample at time index k, over the block's samples [m]: the mean-value bound
+  /// |Δa| · sup|∂(p, Rθ)/∂a| + |Δκ| · sup|∂(p, Rθ)/∂κ| of the pose (p, θ) at t_k, R the footprint's
+  /// bounding radius (see the definition for the derivatives; docs/method.md §4.4). The signed
+  /// distance of every sample of the block to a fixed obstacle lies within this of the centre's.
+  double block_spread(const block& b, std::size_t k) const;
+  /// Most the velocity of the reference point of a sample of block b can differ from the centre
+  /// sample's at time index k [m/s] (the same mean-value bound for the velocity).
+  double velocity_spread(const block& b, std::size_t k) const;
+  /// Velocity of sample m's reference point at time index k [m/s], world frame.
+  vec2 velocity(std::size_t k, std::size_t m) const;
+  /// Largest acceleration of the reference point of a sample of block b from time index k on
+  /// [m/s²]: |a| + |κ| v² on the arc, 0 on the straight part.
+  double largest_acceleration(const block& b, std::size_t k) const;
+  /// `largest_acceleration` of sample m.
+  double largest_acceleration(std::size_t k, std::size_t m) const;
+  /// Largest speed at which a footprint point of a sample of block b turns about the reference
+  /// point from time index k on [m/s]: |κ| v R on the arc, 0 on the straight part.
+  double turn_speed(const block& b, std::size_t k) const;
+  /// `turn_speed` of sample m.
+  double turn_speed(std::size_t k, std::size_t m) const {
+    return times_[k] < window_.horizon ? std::abs(samples_.maneuvers[m].curvature) * sample_speed_[m] * ego_radius_ : 0.0;
+  }
+
  private:
   void fill(std::size_t k, std::size_t m) const;
+  /// Adds the block of grid rows [r0, r1) × columns [c0, c1) and its halves; returns its index.
+  /// `sample(r, c)` is the sample index of a node; `accelerations[r]`, `curvatures[c]` its values.
+  struct grid_view;
+  std::uint32_t add_block(const grid_view& grid, std::size_t r0, std::size_t r1, std::size_t c0, std::size_t c1);
 
   /// What the straight part (t > T_h) of sample m needs: `maneuver_local_placement`'s values at T_h.
   struct straight_part {
@@ -123,26 +174,48 @@ class ego_sweep {
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
   std::vector<double> reach_radius_;
+  double ego_radius_ = 0.0;  ///< bounding radius of the ego footprint [m]
+  /// Upper bounds of the arc length at time t ≤ T_h and of the speed at T_h of a sample of acceleration a.
+  double arc_length_bound(double a, double t) const;
+  double speed_bound(double a) const;
+  std::vector<block> blocks_;
+  std::vector<std::uint32_t> roots_;
+  std::vector<std::uint32_t> order_;
+};
+
+/// How far a distance between two moving footprints can fall within Δ seconds of a time [m]: by at
+/// most rate · Δ (the largest relative speed over the window), and by at most speed · Δ +
+/// acceleration · Δ²/2 (the relative speed at that time, and how fast it can grow).
+struct fall_bound {
+  double rate;          ///< [m/s]
+  double speed;         ///< [m/s]
+  double acceleration;  ///< [m/s²]
 };
 
 /// The collision sets of one obstacle for every forecast time, computed only as far as the
-/// indices need them (spec §5, §6). For every forecast time τ_i and sample m the *sign* of the
-/// clearance is always right; its *value* is computed on demand (`exact`) and is then equal, bit
-/// for bit, to `clearances_reference` clamped to ±cap. Until then a positive clearance reads
-/// +cap and a negative one −cap. The interpolating indices (`maneuverability_index`) use values
-/// only at the ends of grid edges whose ends differ in sign (and at saddle cells), so a caller
-/// makes those exact first.
+/// indices need them (spec §5, §6).
 ///
-/// How the signs are found cheaply, each step exact:
-/// - forecasts agree up to τ, so the walk over t ≤ τ_i is done once and shared by larger τ;
-/// - a sample is skipped at a time when a lower bound — the distance of bounding discs, or the last
-///   clearance computed minus the largest relative point speed L times the time elapsed — shows it
-///   stays above the threshold that matters: L·step/2 (above it, the refined minimum cannot reach
-///   0), then 0 once it has come that close;
-/// - before the per-τ walks, one pass against a disc holding the obstacle under every τ_i tells
-///   each sample the first time it can come within its threshold under any of them;
-/// - a sample that comes within L·step/2 of contact without touching at a sample time is refined
-///   (`exact`), because only the refined minimum decides its sign.
+/// Signs: for every forecast time τ_i the samples that overlap the obstacle at some sample time
+/// (`sampled_collisions`, the sampled [CSS]) are found exactly, equal to a brute-force test of every
+/// sample at every sample time. Values: the clearance of a sample is computed on demand (`exact`)
+/// and is then equal, bit for bit, to `clearances_reference` clamped to ±cap; it can be ≤ 0 where no
+/// sample time overlaps (a contact between samples). Until then an entry of `set` reads −cap for a
+/// sampled collision and +cap otherwise. The interpolating indices read values only at the ends of
+/// grid edges whose ends differ in sign (and at saddle cells); the planner makes those exact and
+/// takes a contact between samples next to a colliding sample as a collision (docs/method.md §4.4).
+///
+/// How the sampled signs are found cheaply, each step exact:
+/// - forecasts agree up to τ, so the times t ≤ τ_i are rastered once and shared by larger τ;
+/// - blocks of samples (`ego_sweep::block`) are decided whole: a block whose centre sample's
+///   clearance bound exceeds the block's spread is clear at that time, one whose centre overlaps
+///   deeper than the spread overlaps everywhere; only the others are halved, for good;
+/// - a clear block waits, in the list of that sample time, for the first time at which one of its
+///   samples can overlap: from the largest relative speed over the window, from the relative
+///   velocity now and how fast it can change, and, for the reference points' distance, from how
+///   fast that distance changes now (an obstacle moving away is not looked at again soon). Every
+///   forecast moves no faster than these allow, so a wait found on the shared times holds for the
+///   straight part of every forecast time that shares them;
+/// - a sample or block known to collide is not looked at again for that τ.
 /// Holds mutable caches (the exact values): one field must not be used by two threads at once.
 class clearance_field {
  public:
@@ -150,8 +223,11 @@ class clearance_field {
                   double cap);
 
   std::size_t forecast_count() const { return taus_.size(); }
-  /// Entry [m] of forecast time i: the exact clearance where known, else ±cap with the right sign.
+  /// Entry [m] of forecast time i: the exact clearance where known, else −cap for a sampled
+  /// collision and +cap otherwise.
   const clearance_set& set(std::size_t i) const { return sets_[slot(i)]; }
+  /// The samples that overlap the obstacle forecast with forecast time i at some sample time.
+  const sample_mask& sampled_collisions(std::size_t i) const { return sampled_[slot(i)]; }
   bool is_exact(std::size_t i, std::size_t m) const { return exact_[slot(i)][m] != 0; }
   /// The clearance of sample m with forecast time i, equal to the clamped brute-force one.
   double exact(std::size_t i, std::size_t m);
@@ -160,11 +236,12 @@ class clearance_field {
   /// is provably ≥ ceiling + L·step/2. What a minimum over obstacles needs from an obstacle that
   /// cannot lower it.
   double exact_below(std::size_t i, std::size_t m, double ceiling);
-  /// True when no entry of forecast time i's set is below the cap: the obstacle cannot lower a
-  /// minimum over obstacles that starts from the cap.
-  bool all_at_cap(std::size_t i) const { return below_cap_[slot(i)] == 0; }
-  /// True when some sample collides with the obstacle forecast with forecast time i [CSS ≠ ∅].
-  bool collides(std::size_t i) const { return colliding_[slot(i)] != 0; }
+  /// A lower bound of the clearance of sample m under every forecast time [m], found once per sample
+  /// and kept: the closest the obstacle's bounding disc can come to the sample's at a sample time,
+  /// less how far the signed distance can fall between sample times.
+  double floor_of_all(std::size_t m);
+  /// True when some sample overlaps the obstacle forecast with forecast time i at a sample time.
+  bool collides(std::size_t i) const { return !sampled_[slot(i)].none(); }
   /// True when the obstacle stays farther than the cap from every sample at every time under
   /// every forecast time: every clearance is exactly +cap, so the obstacle changes nothing.
   bool inert() const { return inert_; }
@@ -208,6 +285,47 @@ class clearance_field {
   /// rectangles whose face separation − margin is already ≥ `enough`, that separation (it changes
   /// no faster than the signed distance), without the corner distances.
   lower_bound distance_or_bound(const ego_sweep::placement& p, const obstacle_at& o, double enough) const;
+  /// What the raster of a forecast time knows after some sample times: the samples that overlapped
+  /// (tree order, `ego_sweep::order`), and the blocks to look at again, each in the list of the
+  /// first time index at which one of its samples can overlap (a block whose halves wait on their
+  /// own is in no list).
+  struct raster_state {
+    static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    sample_mask hit;
+    std::vector<std::uint32_t> head;  ///< [k]: first block waiting for time index k
+    std::vector<std::uint32_t> link;  ///< [block]: the next in the same list
+    /// Block `block` waits for time index k (past the last time: it is done).
+    void wait(std::size_t k, std::uint32_t block);
+    /// Empties the list of time index k and returns its first block.
+    std::uint32_t take(std::size_t k);
+    /// Moves the blocks waiting for time index k to k + 1.
+    void postpone(std::size_t k);
+  };
+  /// The obstacle placed for the distances: placement, rectangle (when it is one), footprint (general shapes).
+  struct placed_obstacle {
+    obstacle_at at;
+    placed_rectangle rectangle;
+    placed_footprint footprint;
+  };
+  /// How far, from a time on, the distance of the reference points (`centres`) and the signed
+  /// distance (`distances`) of a sample and the obstacle placed at `o` can fall: the sample's
+  /// velocity `ego_velocity` [m/s] (the centre's of a block, whose samples' velocities are within
+  /// `velocity_spread` of it), footprint turn speed `turn_speed` [m/s] and acceleration bound
+  /// `acceleration` [m/s²] then; the rates over the whole window are `centre_rate` and
+  /// `distance_rate` [m/s].
+  struct falls {
+    fall_bound centres;
+    fall_bound distances;
+  };
+  falls local_falls(vec2 ego_velocity, double velocity_spread, double turn_speed, double acceleration,
+                    const obstacle_at& o, double centre_rate, double distance_rate) const;
+  /// First time index after k at which a distance `gap` [m] above zero at t_k, changing now at
+  /// `change` [m/s] with a second derivative of at most `curvature` [m/s²], could reach zero.
+  std::uint32_t until_second_order(std::size_t k, double gap, double change, double curvature) const;
+  /// Marks in `state` every sample that overlaps the obstacle placed at `o` at time index k.
+  void raster(std::size_t k, const obstacle_at& o, raster_state& state);
+  /// `raster` of block `index` (and its halves when it is undecided as a whole).
+  void raster_block(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state);
   /// Rates of sample m: of its reference point's distance and of the signed distance [m/s].
   double centre_rate(std::size_t m) const { return sweep_.sample_speed(m) + obstacle_.motion.speed; }
   double distance_rate(std::size_t m) const { return sweep_.sample_point_speed(m) + obstacle_turn_speed_; }
@@ -219,36 +337,9 @@ class clearance_field {
   /// is `at_sample`; searched once per sample when the bracket lies in the times shared by every τ.
   double refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample);
 
-  /// The local minima ≤ θ of one sample's sampled clearance, met in time order by a walk that
-  /// looks at every time at which the clearance can be ≤ θ (a time it skips is > θ).
-  struct dips {
-    std::size_t candidate = no_index;  ///< last time looked at if ≤ θ and ≤ the time before it
-    double candidate_value = 0.0;
-    std::size_t last = no_index;       ///< last time looked at
-    double last_value = 0.0;
-    double refined = std::numeric_limits<double>::infinity();  ///< smallest refinement of a confirmed dip
-    static constexpr std::size_t no_index = std::numeric_limits<std::size_t>::max();
-  };
-  /// A local minimum of the sampled clearance: its time index (`dips::no_index`: none) and value [m].
-  struct dip {
-    std::size_t at = dips::no_index;
-    double value = 0.0;
-  };
-  /// Where a sample stands in the walk that decides its sign, and the samples a walk follows
-  /// (defined with the walk).
-  struct sign_state;
-  struct sign_walk;
-
-  /// Tells `d` the walk is at time index k (`value` looked at there, or skipped: > θ). Returns the
-  /// local minimum this confirms, if any.
-  static dip visit(dips& d, std::size_t k, bool looked, double value, double theta);
-  /// The walk is over: the candidate still waiting for the time after it is a local minimum.
-  static dip finish(dips& d);
-
   /// The exact walk of one sample over the shared times t ≤ τ (the same for every larger τ).
   struct prefix_walk {
     running_minimum minimum;
-    dips low;
     std::size_t next = 0;   ///< next time index to look at
     std::size_t until = 0;  ///< time indices [0, until) are done
   };
@@ -267,6 +358,7 @@ class clearance_field {
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
   std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i (none when ω = 0)
   double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
+  double obstacle_acceleration_ = 0.0;  ///< of the obstacle's reference point while it turns [m/s²]: v |ω|
   /// Which closed form the distances use: two rectangles, a rectangular ego and a disc, or the
   /// general placed footprints.
   enum class shape_pair : std::uint8_t { rectangles, rectangle_disc, general };
@@ -276,13 +368,21 @@ class clearance_field {
   double obstacle_radius_ = 0.0;  ///< of the obstacle disc [m]
   work work_;
   std::vector<clearance_set> sets_;
-  std::vector<std::size_t> below_cap_;  ///< [slot]: entries of the set below the cap
-  std::vector<std::size_t> colliding_;  ///< [slot]: samples that collide (negative entries)
+  std::vector<sample_mask> sampled_;  ///< [slot]: the sampled collisions
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
+  std::vector<double> floor_all_;  ///< [m]: `floor_of_all`, NaN until computed (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;
   std::vector<prefix_walk> prefix_;                                    ///< [m]
   std::vector<std::vector<std::pair<std::size_t, double>>> refined_;  ///< [m]: (time index, refined minimum) on shared times
 };
+
+/// The sampled collision sets of one obstacle for every forecast time, by brute force (the
+/// reference for `clearance_field::sampled_collisions`): mask i holds the samples whose signed
+/// distance − margin is ≤ 0 at some sample time of the window under `forecast_times[i]`.
+std::vector<sample_mask> sampled_collisions_reference(const ego_state& ego, const maneuver_samples& samples,
+                                                      const forecast_obstacle& obstacle,
+                                                      std::span<const double> forecast_times,
+                                                      const collision_window& window);
 
 /// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed
 /// clearance of sample m with the obstacle forecast with `forecast_times[i]` (ascending): the
