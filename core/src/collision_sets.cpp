@@ -219,11 +219,6 @@ double ego_sweep::largest_acceleration(std::size_t k, std::size_t m) const {
   return (std::abs(u.acceleration) + std::abs(u.curvature) * v * v) * (1.0 + 1e-9);
 }
 
-double ego_sweep::turn_speed(const block& b, std::size_t k) const {
-  if (times_[k] >= window_.horizon) return 0.0;
-  return b.largest_curvature * std::max(std::min(ego_.speed, ego_.limits.speed_cap), speed_bound(b.top_acceleration)) *
-         ego_radius_;
-}
 
 ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
   const vec2 rotation = start_rotation_;
@@ -276,23 +271,9 @@ std::size_t first_possible(std::size_t k, double gap, double rate, double time_s
   return k + static_cast<std::size_t>(steps) + 1;
 }
 
-/// Below this many sample steps of wait from the largest rates, the raster looks at the local ones.
-constexpr std::size_t local_wait_steps = 4;
-
-/// First time index after k at which a distance `gap` above zero could reach zero.
-std::size_t first_possible(std::size_t k, double gap, const fall_bound& fall, double time_step) {
-  if (!(gap > 0.0)) return k + 1;
-  double delta = fall.rate > 0.0 ? gap / fall.rate : std::numeric_limits<double>::infinity();
-  const double root = std::sqrt(fall.speed * fall.speed + 2.0 * fall.acceleration * gap);
-  if (fall.speed + root > 0.0) {
-    delta = std::max(delta, 2.0 * gap / (fall.speed + root));
-  } else {
-    delta = std::numeric_limits<double>::infinity();
-  }
-  const double steps = delta * (1.0 - 1e-9) / time_step;
-  if (steps >= 1e9) return std::numeric_limits<std::size_t>::max();
-  return k + static_cast<std::size_t>(steps) + 1;
-}
+/// Below this many sample steps of wait from the largest rates, the raster also bounds the centres'
+/// distance from how fast it changes now.
+constexpr std::size_t second_order_steps = 2;
 
 }  // namespace
 
@@ -396,15 +377,6 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   }
 }
 
-clearance_field::falls clearance_field::local_falls(vec2 ego_velocity, double velocity_spread, double turn_speed,
-                                                    double ego_acceleration, const obstacle_at& o, double centre_rate,
-                                                    double distance_rate) const {
-  const double relative = norm(ego_velocity - obstacle_.motion.speed * o.direction) + velocity_spread;
-  const double acceleration = ego_acceleration + obstacle_acceleration_;
-  return {{centre_rate, relative, acceleration},
-          {distance_rate, relative + turn_speed + obstacle_turn_speed_ - obstacle_.motion.speed, acceleration}};
-}
-
 std::uint32_t clearance_field::until_second_order(std::size_t k, double gap, double change, double curvature) const {
   // gap + change·Δ − curvature·Δ²/2 > 0 before the positive root.
   constexpr std::uint32_t never = std::numeric_limits<std::uint32_t>::max();
@@ -456,21 +428,11 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   const bool single = b.second == 0;
   const double spread = single ? 0.0 : sweep_.block_spread(b, k);
   ++work_.bound_checks;
-  // The wait for a gap [m] above zero: from the largest rates over the window, or, where that is
-  // short, from how far the distances of the block's samples can fall from now on.
+  // The first time at which a gap [m] above zero can close, from the largest rates over the window.
   const auto until = [&](double gap, bool centres) {
     const double rate = single ? (centres ? centre_rate(b.centre) : distance_rate(b.centre))
                                : (centres ? centre_rate_ : distance_rate_);
-    std::size_t next = first_possible(k, gap, rate, step);
-    if (next < k + local_wait_steps) {
-      const falls fall =
-          single ? local_falls(sweep_.velocity(k, b.centre), 0.0, sweep_.turn_speed(k, b.centre),
-                               sweep_.largest_acceleration(k, b.centre), o.at, rate, rate)
-                 : local_falls(sweep_.velocity(k, b.centre), sweep_.velocity_spread(b, k), sweep_.turn_speed(b, k),
-                               sweep_.largest_acceleration(b, k), o.at, rate, rate);
-      next = first_possible(k, gap, centres ? fall.centres : fall.distances, step);
-    }
-    return next;
+    return first_possible(k, gap, rate, step);
   };
   // Every sample of the block is within `spread` of the centre's placement: its signed distance −
   // margin lies in [low − spread, high + spread], with low and high bounds of the centre's.
@@ -479,7 +441,7 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   const double disc = centres - reach_ - margin - spread;
   if (disc > 0.0) {
     std::size_t next = until(disc, true);
-    if (next < k + local_wait_steps) {
+    if (next < k + second_order_steps) {
       // The samples' reference-point distances D to the obstacle's, from how fast the centre's
       // changes now: D(t_k + Δ) ≥ D − spread + (Ḋ − correction) Δ − M Δ²/2, where while D ≥ the
       // reach, D̈ ≤ |ṙ|²/D + |r̈| ≤ M. Long waits for an obstacle that moves away.

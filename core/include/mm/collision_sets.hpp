@@ -132,13 +132,6 @@ class ego_sweep {
   double largest_acceleration(const block& b, std::size_t k) const;
   /// `largest_acceleration` of sample m.
   double largest_acceleration(std::size_t k, std::size_t m) const;
-  /// Largest speed at which a footprint point of a sample of block b turns about the reference
-  /// point from time index k on [m/s]: |κ| v R on the arc, 0 on the straight part.
-  double turn_speed(const block& b, std::size_t k) const;
-  /// `turn_speed` of sample m.
-  double turn_speed(std::size_t k, std::size_t m) const {
-    return times_[k] < window_.horizon ? std::abs(samples_.maneuvers[m].curvature) * sample_speed_[m] * ego_radius_ : 0.0;
-  }
 
  private:
   void fill(std::size_t k, std::size_t m) const;
@@ -183,15 +176,6 @@ class ego_sweep {
   std::vector<std::uint32_t> order_;
 };
 
-/// How far a distance between two moving footprints can fall within Δ seconds of a time [m]: by at
-/// most rate · Δ (the largest relative speed over the window), and by at most speed · Δ +
-/// acceleration · Δ²/2 (the relative speed at that time, and how fast it can grow).
-struct fall_bound {
-  double rate;          ///< [m/s]
-  double speed;         ///< [m/s]
-  double acceleration;  ///< [m/s²]
-};
-
 /// The collision sets of one obstacle for every forecast time, computed only as far as the
 /// indices need them (spec §5, §6).
 ///
@@ -210,11 +194,10 @@ struct fall_bound {
 ///   clearance bound exceeds the block's spread is clear at that time, one whose centre overlaps
 ///   deeper than the spread overlaps everywhere; only the others are halved, for good;
 /// - a clear block waits, in the list of that sample time, for the first time at which one of its
-///   samples can overlap: from the largest relative speed over the window, from the relative
-///   velocity now and how fast it can change, and, for the reference points' distance, from how
-///   fast that distance changes now (an obstacle moving away is not looked at again soon). Every
-///   forecast moves no faster than these allow, so a wait found on the shared times holds for the
-///   straight part of every forecast time that shares them;
+///   samples can overlap: from the largest relative speed over the window and, for the reference
+///   points' distance, from how fast that distance changes now (an obstacle moving away is not
+///   looked at again soon). Every forecast moves no faster than these allow, so a wait found on the
+///   shared times holds for the straight part of every forecast time that shares them;
 /// - a sample or block known to collide is not looked at again for that τ.
 /// Holds mutable caches (the exact values): one field must not be used by two threads at once.
 class clearance_field {
@@ -307,18 +290,6 @@ class clearance_field {
     placed_rectangle rectangle;
     placed_footprint footprint;
   };
-  /// How far, from a time on, the distance of the reference points (`centres`) and the signed
-  /// distance (`distances`) of a sample and the obstacle placed at `o` can fall: the sample's
-  /// velocity `ego_velocity` [m/s] (the centre's of a block, whose samples' velocities are within
-  /// `velocity_spread` of it), footprint turn speed `turn_speed` [m/s] and acceleration bound
-  /// `acceleration` [m/s²] then; the rates over the whole window are `centre_rate` and
-  /// `distance_rate` [m/s].
-  struct falls {
-    fall_bound centres;
-    fall_bound distances;
-  };
-  falls local_falls(vec2 ego_velocity, double velocity_spread, double turn_speed, double acceleration,
-                    const obstacle_at& o, double centre_rate, double distance_rate) const;
   /// First time index after k at which a distance `gap` [m] above zero at t_k, changing now at
   /// `change` [m/s] with a second derivative of at most `curvature` [m/s²], could reach zero.
   std::uint32_t until_second_order(std::size_t k, double gap, double change, double curvature) const;
