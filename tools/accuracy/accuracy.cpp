@@ -4,7 +4,10 @@
 //
 //   maneuvermap_accuracy [--scenes N] [--seed S] [--obstacles K] [--noise 0/1] [--fast AxC@DT,...]
 //                        [--ref-accelerations A] [--ref-curvatures C] [--ref-proof-resolution S]
-//                        [--ref-engine fast|reference [--ref-time-step DT]]
+//                        [--ref-engine fast|reference [--ref-time-step DT]] [--signs 1]
+// With --signs 1 it also compares, per fast setting, which samples collide under each forecast time
+// with the reference planner at the same grid (continuous time): the (sample, forecast time) pairs
+// the reference finds colliding, those the fast planner misses, and those only the fast one finds.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -44,6 +47,9 @@ struct fast_setting {
   std::vector<double> errors;
   std::size_t disagreements = 0;
   double seconds = 0.0;
+  std::size_t colliding = 0;        ///< (sample, τ) pairs colliding for the reference at this grid
+  std::size_t missed = 0;           ///< of those, safe for the fast planner
+  std::size_t only_fast = 0;        ///< colliding for the fast planner only
 };
 
 /// "11x15@0.05,21x21@0.02" → settings.
@@ -60,7 +66,7 @@ std::vector<fast_setting> parse_settings(const std::string& text) {
       std::fprintf(stderr, "bad setting '%s', expected AxC@DT\n", item.c_str());
       std::exit(2);
     }
-    fast_setting setting{{a, c}, dt, 0.0, {}, 0, 0.0};
+    fast_setting setting{{a, c}, dt, 0.0, {}, 0, 0.0, 0, 0, 0};
     settings.push_back(std::move(setting));
     start = end + 1;
   }
@@ -93,6 +99,7 @@ int main(int argc, char** argv) {
   // --ref-engine fast: compute the "reference" with the fast path at the reference resolution
   // (bit-identical to the reference engine at equal settings, and much cheaper): for convergence studies.
   const bool fast_reference = std::strcmp(text_argument(argc, argv, "--ref-engine", "reference"), "fast") == 0;
+  const bool signs = argument(argc, argv, "--signs", 0) != 0;
   std::mt19937_64 rng(seed);
   std::size_t interacting = 0;
   double reference_seconds = 0.0;
@@ -134,6 +141,21 @@ int main(int argc, char** argv) {
       if (adj_margin(r) > 0.02 && (f.forecast_index != r.forecast_index || f.selected_family != r.selected_family)) {
         ++setting.disagreements;
       }
+      if (signs) {
+        mm::plan_input recorded = in;
+        recorded.config.record_samples = true;
+        const mm::plan_result fs = mm::plan(recorded);
+        const mm::plan_result rs = mm::plan_reference(recorded, {setting.resolution, reference.proof_resolution});
+        for (std::size_t i = 0; i < fs.forecast_times.size(); ++i) {
+          for (std::size_t m = 0; m < fs.samples->maneuvers.size(); ++m) {
+            const bool fast_safe = fs.samples->safe_by_forecast[i][m] != 0;
+            const bool reference_safe = rs.samples->safe_by_forecast[i][m] != 0;
+            setting.colliding += reference_safe ? 0 : 1;
+            setting.missed += !reference_safe && fast_safe ? 1 : 0;
+            setting.only_fast += reference_safe && !fast_safe ? 1 : 0;
+          }
+        }
+      }
     }
   }
   std::printf("reference %s %zux%zu: %zu scenes (%zu interacting), %zu obstacle(s), %.1f ms per scene\n",
@@ -149,6 +171,11 @@ int main(int argc, char** argv) {
     std::printf("%-16s %9.4f %9.4f %9.4f %14zu %12.3f\n", name, setting.worst,
                 setting.errors[setting.errors.size() * 95 / 100], setting.errors[setting.errors.size() / 2],
                 setting.disagreements, 1e3 * setting.seconds / static_cast<double>(scenes));
+    if (signs) {
+      std::printf("%-16s colliding (sample, tau) pairs for the reference at this grid: %zu; missed by the fast planner: %zu; "
+                  "colliding for the fast planner only: %zu\n",
+                  name, setting.colliding, setting.missed, setting.only_fast);
+    }
   }
   return 0;
 }
