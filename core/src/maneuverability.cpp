@@ -109,6 +109,43 @@ double maneuverability_index(const displacement_set& set, std::span<const double
   return std::clamp(safe / total, 0.0, 1.0);
 }
 
+double sign_index(const displacement_set& set, std::span<const double> clearance) {
+  if (set.degenerate || set.curvature_count == 1) {
+    // One sign per node is all the interpolation sees here too: the general estimator of ±1 values.
+    std::vector<double> signs(clearance.size());
+    for (std::size_t m = 0; m < signs.size(); ++m) signs[m] = clearance[m] > 0.0 ? 1.0 : -1.0;
+    return maneuverability_index(set, signs);
+  }
+  // positive_fraction of ±1 corners, by pattern: bit 0 c00, bit 1 c10, bit 2 c01, bit 3 c11.
+  static const std::array<double, 16> share = [] {
+    std::array<double, 16> table{};
+    const auto sign = [](unsigned pattern, unsigned bit) { return (pattern >> bit) & 1U ? 1.0 : -1.0; };
+    for (unsigned p = 0; p < 16; ++p) table[p] = positive_fraction(sign(p, 0), sign(p, 1), sign(p, 2), sign(p, 3));
+    return table;
+  }();
+  if (std::all_of(clearance.begin(), clearance.end(), [](double c) { return c > 0.0; })) return 1.0;
+  const std::size_t columns = set.curvature_count;
+  double total = 0.0;
+  double safe = 0.0;
+  for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+    for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
+      const double w = set.cell_weights[ia * (columns - 1) + ik];
+      const std::size_t lower = ia * columns + ik;
+      const std::size_t upper = lower + columns;
+      total += w;
+      const unsigned pattern = (clearance[lower] > 0.0 ? 1U : 0U) | (clearance[lower + 1] > 0.0 ? 2U : 0U) |
+                               (clearance[upper] > 0.0 ? 4U : 0U) | (clearance[upper + 1] > 0.0 ? 8U : 0U);
+      if (pattern == 15U) {
+        safe += w;
+      } else if (pattern != 0U) {
+        safe += w * share[pattern];
+      }
+    }
+  }
+  if (total <= 0.0) return 1.0;
+  return std::clamp(safe / total, 0.0, 1.0);
+}
+
 std::vector<std::uint8_t> excluded_forecast_times(std::span<const double> forecast_times,
                                                   double time_to_collision) {
   std::vector<std::uint8_t> excluded(forecast_times.size(), 0);

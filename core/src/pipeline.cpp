@@ -64,20 +64,23 @@ class evaluator {
   double room_alone(std::size_t j, std::size_t i, bool rough) {
     const std::pair<std::size_t, std::size_t> part{j, i};
     combined_parts(std::span(&part, 1), scratch_set_, rough);
-    return room(scratch_set_);
+    return room(scratch_set_, rough);
   }
 
-  /// MI− and MI+ (spec §6): the reference counts safe samples' areas; the fast path interpolates.
-  maneuverability_pair indices(const clearance_set& c) const {
+  /// MI− and MI+ (spec §6): the reference counts safe samples' areas; the fast path interpolates
+  /// (`rough`: from the signs alone, `sign_index`).
+  maneuverability_pair indices(const clearance_set& c, bool rough = false) const {
     if (reference_) return maneuverability_indices(samples_, colliding(c));
     const index_range b = samples_.grid(family::brake);
     const index_range a = samples_.grid(family::accelerate);
-    return {maneuverability_index(samples_.brake, std::span(c).subspan(b.begin, b.size())),
-            maneuverability_index(samples_.accelerate, std::span(c).subspan(a.begin, a.size()))};
+    const auto index = rough ? sign_index : static_cast<double (*)(const displacement_set&, std::span<const double>)>(
+                                                maneuverability_index);
+    return {index(samples_.brake, std::span(c).subspan(b.begin, b.size())),
+            index(samples_.accelerate, std::span(c).subspan(a.begin, a.size()))};
   }
 
-  double room(const clearance_set& c) const {
-    const maneuverability_pair mi = indices(c);
+  double room(const clearance_set& c, bool rough = false) const {
+    const maneuverability_pair mi = indices(c, rough);
     return std::max(mi.brake, mi.accelerate);
   }
 
@@ -97,7 +100,7 @@ class evaluator {
     if (!reference_ && rough) key.push_back(rough_key);
     if (const auto it = rooms_.find(key); it != rooms_.end()) return it->second;
     combine_into(index, scratch_set_, rough);
-    const double r = room(scratch_set_);
+    const double r = room(scratch_set_, rough);
     rooms_.emplace(key, r);
     return r;
   }
@@ -176,25 +179,25 @@ class evaluator {
 
   /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap): the
   /// obstacles that collide there first, then the others, closest first, each asked only below the
-  /// minimum so far.
+  /// minimum so far. `parts` holds the obstacles that are not inert.
   double exact_minimum(std::span<const std::pair<std::size_t, std::size_t>> parts, std::size_t m) {
-    if (parts.size() == 1) {
-      const auto [j, i] = parts.front();
-      return fields_[j].inert() ? clearance_cap : fields_[j].exact(i, m);  // nothing to prune against
-    }
+    if (parts.empty()) return clearance_cap;
+    if (parts.size() == 1) return fields_[parts.front().first].exact(parts.front().second, m);
     double value = clearance_cap;
     candidates_.clear();
     for (std::size_t p = 0; p < parts.size(); ++p) {
       const auto [j, i] = parts[p];
       clearance_field& field = fields_[j];
-      if (field.inert()) continue;
       if (field.is_exact(i, m) || field.sampled_collisions(i).test(m)) {
         value = std::min(value, field.exact(i, m));
-      } else if (const double floor = field.floor_of_all(m); floor < clearance_cap) {
+      } else if (const double floor = field.floor_of_all(m); floor < value) {
+        // Kept in order of floors: the closest obstacle is asked first.
         candidates_.emplace_back(floor, p);
+        for (std::size_t at = candidates_.size() - 1; at > 0 && candidates_[at - 1].first > floor; --at) {
+          std::swap(candidates_[at], candidates_[at - 1]);
+        }
       }
     }
-    std::sort(candidates_.begin(), candidates_.end());
     for (const auto& [floor, p] : candidates_) {
       if (floor >= value) break;  // neither it nor the farther ones can lower the minimum
       const auto [j, i] = parts[p];
@@ -209,7 +212,13 @@ class evaluator {
   /// reads signs only (`positive_fraction`). A sample that overlaps no obstacle at a sample time
   /// but whose exact clearance is ≤ 0 (a contact between sample times) collides: its other
   /// neighbours are read in turn, until the boundary is where the exact values put it.
-  void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
+  void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> all_parts, clearance_set& c) {
+    // Inert obstacles are +cap everywhere: they cannot lower a minimum.
+    live_parts_.clear();
+    for (const auto& part : all_parts) {
+      if (!fields_[part.first].inert()) live_parts_.push_back(part);
+    }
+    const std::span<const std::pair<std::size_t, std::size_t>> parts = live_parts_;
     const std::size_t size = c.size();
     positive_.resize(size);
     valued_.assign(size, 0);
@@ -286,6 +295,7 @@ class evaluator {
   std::vector<std::uint8_t> read_;      ///< scratch of make_read_values_exact: [m] needs a value
   std::vector<std::uint8_t> valued_;    ///< scratch of make_read_values_exact: [m] has its exact value
   std::vector<std::pair<double, std::size_t>> candidates_;  ///< scratch of exact_minimum: (floor, part)
+  std::vector<std::pair<std::size_t, std::size_t>> live_parts_;  ///< scratch of make_read_values_exact
 };
 
 }  // namespace

@@ -85,6 +85,26 @@ TEST(maneuverability, interpolated_index_places_a_boundary_between_nodes_where_c
   EXPECT_GT(std::abs(counted - exact), 0.01) << "node counting puts the boundary half-way at −2.1 or −2.8";
 }
 
+TEST(maneuverability, the_sign_index_is_the_interpolated_index_of_plus_and_minus_one_values) {
+  ego_state ego;
+  ego.speed = 8.0;
+  const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, {9, 13});
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> value(-3.0, 3.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<double> c(samples.brake.samples.size());
+    // Blobs of one sign as well as noise: some sets have few sign changes, some many.
+    const double threshold = value(rng);
+    for (std::size_t m = 0; m < c.size(); ++m) c[m] = trial % 2 == 0 ? value(rng) : threshold - static_cast<double>(m % 13) * 0.4;
+    std::vector<double> unit(c.size());
+    for (std::size_t m = 0; m < c.size(); ++m) unit[m] = c[m] > 0.0 ? 2.0 : -2.0;
+    ASSERT_EQ(sign_index(samples.brake, c), maneuverability_index(samples.brake, unit)) << "trial " << trial;
+  }
+  // A boundary through a row of nodes' middles: the half-way rule, not the interpolation.
+  const auto c = clearance_of(samples.brake, [](const maneuver& u) { return -2.35 - u.acceleration; });
+  EXPECT_NE(sign_index(samples.brake, c), maneuverability_index(samples.brake, c));
+}
+
 TEST(maneuverability, degenerate_set_counts_its_safe_nodes) {
   ego_state stopped;
   const maneuver_samples samples = sample_maneuvers(stopped, 0.0, 1.0, {5, 3});

@@ -38,6 +38,12 @@ double positive_fraction(double c0, double c1);
 /// degenerate set counts its safe nodes.
 double maneuverability_index(const displacement_set& set, std::span<const double> clearance);
 
+/// `maneuverability_index` from the signs of the clearances alone, as if every positive node were
+/// +1 and every other −1: the boundary through the middle of every edge whose ends differ. Equal
+/// bit for bit to `maneuverability_index` of such a ±c set, from a table of the 16 sign patterns of
+/// a cell. What the fast forecast-time search ranks assignments by (docs/method.md §5).
+double sign_index(const displacement_set& set, std::span<const double> clearance);
+
 /// Excluded forecast times (spec §6): τ_i > TTC, except τ_0 = 0 which is never excluded.
 std::vector<std::uint8_t> excluded_forecast_times(std::span<const double> forecast_times,
                                                   double time_to_collision);
