@@ -6,15 +6,19 @@
 // replay a scenario to a time found here and plan on `simulation::planning_input` of that instant.
 //
 //   maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]
+//   maneuvermap_capture SCENARIO --agent NAME [--set NAME=VALUE]... --at T --save FILE.json
 //
 // SCENARIO is a built-in name or a file. --every K prints every K-th plan only; --from T looks only
 // at plans from time T [s] on (the run before is simulated, not counted); --summary prints
 // only, per number of interacting obstacles, the step of least room (the strongest interaction)
-// among the plans that still find a safe maneuver (mode other than near_crash).
+// among the plans that still find a safe maneuver (mode other than near_crash). With --save it
+// writes the planning input of NAME at time T instead (the benchmarks' replay of that instant,
+// `mm::capture::replay`), as JSON that `maneuvermap_replan` plans on without the simulation.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <string>
 #include <vector>
@@ -22,6 +26,7 @@
 #include "mm/scenario_file/loader.hpp"
 #include "mm/sim/simulation.hpp"
 #include "mm/capture.hpp"
+#include "mm/plan_input_json.hpp"
 
 namespace {
 
@@ -36,13 +41,16 @@ struct strongest {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]\n");
+    std::fprintf(stderr, "usage: maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]\n"
+                         "       maneuvermap_capture SCENARIO --agent NAME [--set NAME=VALUE]... --at T --save FILE.json\n");
     return 2;
   }
   std::string agent;
   std::size_t every = 1;
   bool summary = false;
   double from = 0.0;
+  double at = -1.0;
+  std::string save;
   mm::scenario_file::load_options options;
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -52,6 +60,10 @@ int main(int argc, char** argv) {
       every = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
     } else if (arg == "--from" && i + 1 < argc) {
       from = std::atof(argv[++i]);
+    } else if (arg == "--at" && i + 1 < argc) {
+      at = std::atof(argv[++i]);
+    } else if (arg == "--save" && i + 1 < argc) {
+      save = argv[++i];
     } else if (arg == "--summary") {
       summary = true;
     } else if (arg == "--set" && i + 1 < argc) {
@@ -65,6 +77,22 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
       return 2;
     }
+  }
+  if (!save.empty()) {
+    if (agent.empty() || at < 0.0) {
+      std::fprintf(stderr, "--save needs --agent NAME and --at T (T >= 0)\n");
+      return 2;
+    }
+    const mm::plan_input input = mm::capture::replay({argv[1], options.overrides, agent, at});
+    std::ofstream file(save);
+    file << mm::capture::to_json(input).dump(1) << "\n";
+    if (!file) {
+      std::fprintf(stderr, "%s: cannot write\n", save.c_str());
+      return 1;
+    }
+    std::printf("%s: the planning input of %s at %.2f s (%zu obstacles)\n", save.c_str(), agent.c_str(), input.time,
+                input.obstacles.size());
+    return 0;
   }
   mm::sim::simulation sim(mm::scenario_file::load(argv[1], options).scenario, mm::capture::every_core());
   std::map<std::size_t, strongest> by_interacting;
