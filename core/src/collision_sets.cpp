@@ -574,11 +574,34 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   const double margin = sweep_.window().margin;
   const double centre = centre_rate(m);
   const double rate = distance_rate(m);
+  // A seed: the value at the time the sampled minimum of the same sample under a neighbouring
+  // forecast time, or of a neighbouring sample, was found (any sample time gives a valid seed).
+  // The walks then skip every time that provably lies above it by more than the argmin tolerance
+  // (such a time cannot become the argmin of the running minimum, so the result is that of a walk
+  // over every time); the seed's own time is looked at as any other.
+  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  std::uint32_t seed_time = none;
+  const auto known_argmin = [&](std::size_t other, std::size_t sample) {
+    if (seed_time == none && other < argmin_.size() && sample < sweep_.sample_count() && !argmin_[other].empty()) {
+      seed_time = argmin_[other][sample];
+    }
+  };
+  known_argmin(i - 1, m);  // the same sample under the neighbouring forecast times
+  known_argmin(i + 1, m);
+  known_argmin(i, m - 1);  // its neighbours in the sample order
+  known_argmin(i, m + 1);
+  double seed = std::numeric_limits<double>::infinity();
+  if (seed_time != none) {
+    const ego_sweep::placement p = sweep_.at(seed_time, m);
+    ++work_.distance_evaluations;
+    seed = distance(p.position, p.direction, obstacle_pose(i, seed_time)) - margin + 3.0 * argmin_tolerance;
+  }
   // Looks at time index k and returns the next one that can be below the running minimum (or the
-  // walking cap: above it every value clamps to the cap).
-  const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r) {
-    const double known = std::min(r.value, walk_cap_);
-    if (known <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
+  // walking cap: above it every value clamps to the cap; or the seed).
+  const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r, double ceiling) {
+    // Every value below −walk_cap clamps to −cap: once the minimum is there, nothing can change it.
+    if (std::min(r.value, walk_cap_) <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
+    const double known = std::min({r.value, walk_cap_, ceiling});
     const ego_sweep::placement p = sweep_.at(k, m);
     ++work_.bound_checks;
     const double bound = norm(p.position - o.position) - reach_ - margin;
@@ -587,23 +610,29 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
     if (!at.exact) return first_possible(k, at.value - known, rate, step);
     ++work_.distance_evaluations;
     r.update(at.value, k);
-    return first_possible(k, at.value - std::min(r.value, walk_cap_), rate, step);
+    return first_possible(k, at.value - std::min({r.value, walk_cap_, ceiling}), rate, step);
   };
-  // The shared times first (kept for larger τ), then this τ's straight part.
+  // The shared times first (kept for larger τ), then this τ's straight part. A seed from a shared
+  // time is a value every larger τ shares, so it may prune the shared walk too.
   prefix_walk& prefix = prefix_[m];
   const std::size_t shared = first_straight_[i];
   if (prefix.until > shared) prefix = prefix_walk{};
-  for (; prefix.next < shared; prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum)) {
-  }
+  const double shared_seed = seed_time < shared ? seed : std::numeric_limits<double>::infinity();
+  for (; prefix.next < shared;) prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum, shared_seed);
   prefix.until = shared;
   running_minimum r = prefix.minimum;
-  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r);
+  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r, seed);
   double c = r.value;
   if (c > -walk_cap_ && c < walk_cap_) c = std::min(c, refined_at(i, m, r.argmin, r.at_argmin));
   c = std::clamp(c, -cap_, cap_);
   ++work_.exact_values;
   sets_[i][m] = c;
   exact_[i][m] = 1;
+  if (r.value < walk_cap_) {
+    if (argmin_.empty()) argmin_.resize(sets_.size());
+    if (argmin_[i].empty()) argmin_[i].assign(sweep_.sample_count(), none);
+    argmin_[i][m] = static_cast<std::uint32_t>(r.argmin);
+  }
   return c;
 }
 

@@ -342,6 +342,7 @@ class clearance_field {
   std::vector<sample_mask> sampled_;  ///< [slot]: the sampled collisions
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
   std::vector<double> floor_all_;  ///< [m]: `floor_of_all`, NaN until computed (allocated on first use)
+  std::vector<std::vector<std::uint32_t>> argmin_;  ///< [slot][m]: time index of the sampled minimum of an exact value (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;
   std::vector<prefix_walk> prefix_;                                    ///< [m]
   std::vector<std::vector<std::pair<std::size_t, double>>> refined_;  ///< [m]: (time index, refined minimum) on shared times
