@@ -3,7 +3,7 @@
 // `plan_repeatedly`, so that instruction counts of one planning step can be taken with callgrind:
 //
 //   maneuvermap_replan FILE.json [--repeat N]
-//   valgrind --tool=callgrind --toggle-collect='plan_repeatedly*' maneuvermap_replan FILE.json --repeat 1
+//   valgrind --tool=callgrind --toggle-collect='*plan_repeatedly*' maneuvermap_replan FILE.json --repeat 1
 //
 // (the count of the `plan_repeatedly` frame, divided by N, is what docs/performance.md reports).
 #include <cstdio>
