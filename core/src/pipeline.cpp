@@ -1,6 +1,7 @@
 #include "pipeline.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <deque>
@@ -60,11 +61,17 @@ class evaluator {
     return c;
   }
 
-  /// max(MI−, MI+) with obstacle j alone at forecast index i; `rough` as in `room_of`.
+  /// max(MI−, MI+) with obstacle j alone at forecast index i; `rough` as in `room_of`. Remembered,
+  /// with the forecast index of an obstacle whose clearances do not depend on it taken as 0.
   double room_alone(std::size_t j, std::size_t i, bool rough) {
+    if (!reference_ && (fields_[j].inert() || fields_[j].forecast_independent())) i = 0;
+    const std::array<std::size_t, 3> key{j, i, rough ? 1u : 0u};
+    if (const auto it = rooms_alone_.find(key); it != rooms_alone_.end()) return it->second;
     const std::pair<std::size_t, std::size_t> part{j, i};
     combined_parts(std::span(&part, 1), scratch_set_, rough);
-    return room(scratch_set_, rough);
+    const double r = room(scratch_set_, rough);
+    rooms_alone_.emplace(key, r);
+    return r;
   }
 
   /// MI− and MI+ (spec §6): the reference counts safe samples' areas; the fast path interpolates
@@ -90,19 +97,32 @@ class evaluator {
   /// every edge whose ends differ — what the fast forecast-time search ranks assignments by; the
   /// assignment it selects is then evaluated with values.
   double room_of(std::span<const std::size_t> index, bool rough) {
-    std::vector<std::size_t>& key = scratch_key_;
-    key.assign(index.begin(), index.end());
-    if (!reference_) {
-      for (std::size_t j = 0; j < key.size(); ++j) {
-        if (fields_[j].inert() || fields_[j].forecast_independent()) key[j] = 0;
-      }
-    }
-    if (!reference_ && rough) key.push_back(rough_key);
+    const std::vector<std::size_t>& key = room_key(index, rough);
     if (const auto it = rooms_.find(key); it != rooms_.end()) return it->second;
+    if (!rough) {
+      if (const auto it = column_rooms_.find(key); it != column_rooms_.end()) return it->second;
+    }
     combine_into(index, scratch_set_, rough);
     const double r = room(scratch_set_, rough);
     rooms_.emplace(key, r);
     return r;
+  }
+
+  /// The combined set of every obstacle at forecast index i (a column of the map) into `c`, and its
+  /// indices; its room is remembered for `room_of`.
+  maneuverability_pair column(std::size_t i, clearance_set& c) {
+    const std::vector<std::size_t> same(reference_ ? reference_sets_.size() : fields_.size(), i);
+    combine_into(same, c);
+    const maneuverability_pair mi = indices(c);
+    column_rooms_.emplace(room_key(same, false), std::max(mi.brake, mi.accelerate));
+    return mi;
+  }
+
+  /// Fast path: true when some obstacle's clearances depend on its forecast time (it turns, and
+  /// is not inert).
+  bool depends_on_forecast_time() const {
+    return std::any_of(fields_.begin(), fields_.end(),
+                       [](const clearance_field& f) { return !f.inert() && !f.forecast_independent(); });
   }
 
   /// True when obstacle j collides with some sample under one of the forecast indices `which`
@@ -149,6 +169,20 @@ class evaluator {
   }
 
  private:
+  /// The key of `rooms_` for an assignment: obstacles whose forecast time changes nothing (inert, or
+  /// not turning) at forecast index 0, and `rough_key` appended for a rough room (fast path).
+  const std::vector<std::size_t>& room_key(std::span<const std::size_t> index, bool rough) {
+    std::vector<std::size_t>& key = scratch_key_;
+    key.assign(index.begin(), index.end());
+    if (!reference_) {
+      for (std::size_t j = 0; j < key.size(); ++j) {
+        if (fields_[j].inert() || fields_[j].forecast_independent()) key[j] = 0;
+      }
+    }
+    if (!reference_ && rough) key.push_back(rough_key);
+    return key;
+  }
+
   /// `combined` into `c`, with the parts list in a buffer kept between calls; `rough`: signs only.
   void combine_into(std::span<const std::size_t> index, clearance_set& c, bool rough = false) {
     scratch_parts_.clear();
@@ -177,33 +211,44 @@ class evaluator {
     if (!rough) make_read_values_exact(parts, c);
   }
 
-  /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap): the
-  /// obstacles that collide there first, then the others, closest first, each asked only below the
-  /// minimum so far. `parts` holds the obstacles that are not inert.
+  /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap), obstacle
+  /// j at forecast index `forecast_of_[j]` (`parts`: the obstacles that are not inert). Obstacles are
+  /// visited in the order of their floors for every forecast time (`by_floor`), and none whose floor
+  /// is at or above the minimum so far: those that collide there or are exact already first, then
+  /// the others, each asked only below the minimum so far.
   double exact_minimum(std::span<const std::pair<std::size_t, std::size_t>> parts, std::size_t m) {
     if (parts.empty()) return clearance_cap;
     if (parts.size() == 1) return fields_[parts.front().first].exact(parts.front().second, m);
+    const auto known = [&](std::size_t j, std::size_t i) {
+      return fields_[j].is_exact(i, m) || fields_[j].sampled_collisions(i).test(m);
+    };
     double value = clearance_cap;
-    candidates_.clear();
-    for (std::size_t p = 0; p < parts.size(); ++p) {
-      const auto [j, i] = parts[p];
-      clearance_field& field = fields_[j];
-      if (field.is_exact(i, m) || field.sampled_collisions(i).test(m)) {
-        value = std::min(value, field.exact(i, m));
-      } else if (const double floor = field.floor_of_all(m); floor < value) {
-        // Kept in order of floors: the closest obstacle is asked first.
-        candidates_.emplace_back(floor, p);
-        for (std::size_t at = candidates_.size() - 1; at > 0 && candidates_[at - 1].first > floor; --at) {
-          std::swap(candidates_[at], candidates_[at - 1]);
-        }
-      }
-    }
-    for (const auto& [floor, p] : candidates_) {
+    const std::span<const std::pair<double, std::size_t>> order = by_floor(m);
+    for (const auto& [floor, j] : order) {
       if (floor >= value) break;  // neither it nor the farther ones can lower the minimum
-      const auto [j, i] = parts[p];
-      value = std::min(value, fields_[j].exact_below(i, m, value));
+      const std::size_t i = forecast_of_[j];
+      if (i != absent && known(j, i)) value = std::min(value, fields_[j].exact(i, m));
+    }
+    for (const auto& [floor, j] : order) {
+      if (floor >= value) break;
+      const std::size_t i = forecast_of_[j];
+      if (i != absent && !known(j, i)) value = std::min(value, fields_[j].exact_below(i, m, value));
     }
     return value;
+  }
+
+  /// (floor, j) of every obstacle that is not inert, `clearance_field::floor_of_all` of sample m,
+  /// ascending (ties by j); found on the first read of m and kept.
+  std::span<const std::pair<double, std::size_t>> by_floor(std::size_t m) {
+    if (by_floor_.empty()) by_floor_.resize(samples_.size());
+    std::vector<std::pair<double, std::size_t>>& order = by_floor_[m];
+    if (order.empty()) {
+      for (std::size_t j = 0; j < fields_.size(); ++j) {
+        if (!fields_[j].inert()) order.emplace_back(fields_[j].floor_of_all(m), j);
+      }
+      std::sort(order.begin(), order.end());
+    }
+    return order;
   }
 
   /// Replaces the placeholders (±cap) by the exact minimum over the obstacles wherever the
@@ -219,6 +264,8 @@ class evaluator {
       if (!fields_[part.first].inert()) live_parts_.push_back(part);
     }
     const std::span<const std::pair<std::size_t, std::size_t>> parts = live_parts_;
+    forecast_of_.assign(fields_.size(), absent);
+    for (const auto& [j, i] : parts) forecast_of_[j] = i;
     const std::size_t size = c.size();
     positive_.resize(size);
     valued_.assign(size, 0);
@@ -273,8 +320,8 @@ class evaluator {
           const std::size_t up = m + columns;
           if (positive[m] != positive[up]) read[m] = read[up] = 1;
           // A saddle cell: its centre value (all four corners) decides it.
-          if (m + 1 < row + columns && positive[m] == positive[up + 1] && positive[m + 1] == positive[up] &&
-              positive[m] != positive[m + 1]) {
+          if (m + 1 < row + columns && positive[m] != positive[m + 1] && positive[m] == positive[up + 1] &&
+              positive[m + 1] == positive[up]) {
             read[m] = read[m + 1] = read[up] = read[up + 1] = 1;
           }
         }
@@ -287,6 +334,8 @@ class evaluator {
   std::vector<std::vector<clearance_set>> reference_sets_;
   std::deque<clearance_field> fields_;
   std::map<std::vector<std::size_t>, double> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
+  std::map<std::array<std::size_t, 3>, double> rooms_alone_;  ///< `room_alone`, keyed by (j, i, rough)
+  std::map<std::vector<std::size_t>, double> column_rooms_;  ///< the rooms of the map's column, keyed as `rooms_`
   static constexpr std::size_t rough_key = std::numeric_limits<std::size_t>::max();
   std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
   std::vector<std::size_t> scratch_key_;
@@ -294,7 +343,9 @@ class evaluator {
   std::vector<std::uint8_t> positive_;  ///< scratch of make_read_values_exact: [m] is positive
   std::vector<std::uint8_t> read_;      ///< scratch of make_read_values_exact: [m] needs a value
   std::vector<std::uint8_t> valued_;    ///< scratch of make_read_values_exact: [m] has its exact value
-  std::vector<std::pair<double, std::size_t>> candidates_;  ///< scratch of exact_minimum: (floor, part)
+  std::vector<std::vector<std::pair<double, std::size_t>>> by_floor_;  ///< [m]: `by_floor`, empty until first read
+  static constexpr std::size_t absent = std::numeric_limits<std::size_t>::max();
+  std::vector<std::size_t> forecast_of_;  ///< scratch of make_read_values_exact: [j] forecast index, or `absent`
   std::vector<std::pair<std::size_t, std::size_t>> live_parts_;  ///< scratch of make_read_values_exact
 };
 
@@ -381,12 +432,20 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
   }
   result.time_to_collision = n == 0 ? no_collision : *std::min_element(ttc.begin(), ttc.end());
 
-  // The map column: every obstacle forecast with τ_i (spec §6).
+  // The map column: every obstacle forecast with τ_i (spec §6). When no obstacle's clearances
+  // depend on its forecast time (none turns, or those that do cannot come near), every τ_i gives
+  // the same set, bit for bit: it is computed once.
   std::vector<clearance_set> clearance_by_forecast;
+  const bool column_constant = !options.reference && !evaluate.depends_on_forecast_time();
   for (std::size_t i = 0; i < tau_count; ++i) {
-    const std::vector<std::size_t> same(n, i);
-    clearance_by_forecast.push_back(evaluate.combined(same));
-    const maneuverability_pair mi = evaluate.indices(clearance_by_forecast.back());
+    if (column_constant && i > 0) {
+      clearance_by_forecast.push_back(clearance_by_forecast.back());
+      result.mi_brake.push_back(result.mi_brake.back());
+      result.mi_accelerate.push_back(result.mi_accelerate.back());
+      continue;
+    }
+    clearance_by_forecast.emplace_back();
+    const maneuverability_pair mi = evaluate.column(i, clearance_by_forecast.back());
     result.mi_brake.push_back(mi.brake);
     result.mi_accelerate.push_back(mi.accelerate);
   }
@@ -408,14 +467,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     problem.rough_room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, true); };
     problem.rough_room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, true); };
   }
-  std::map<std::pair<std::size_t, std::size_t>, double> alone;
-  problem.room_alone = [&](std::size_t j, std::size_t i) {
-    const auto key = std::make_pair(j, i);
-    if (const auto it = alone.find(key); it != alone.end()) return it->second;
-    const double r = evaluate.room_alone(j, i, false);
-    alone.emplace(key, r);
-    return r;
-  };
+  problem.room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, false); };
 
   std::vector<std::size_t> assignment(n, 0);
   if (config.policy.kind == forecast_policy_kind::constant) {
