@@ -165,8 +165,14 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
 
 /// Time to collision [s] (spec §6): first time the ego holding `nominal` (its §5 trajectory)
 /// overlaps `obstacle` following its CTRV forecast for the whole window; `no_collision` if none
-/// within T_c. Located on the window's time samples, then refined by bisection to 1e-4 s.
+/// within T_c. Located on the window's time samples, then refined by bisection to 1e-4 s. Sample
+/// times at which the two cannot overlap yet (bounding discs apart by more than the largest speeds
+/// close in the time between) are not looked at: equal to `time_to_collision_reference`, bit for bit.
 double time_to_collision(const ego_state& ego, const maneuver& nominal,
                          const forecast_obstacle& obstacle, const collision_window& window);
+
+/// The reference for `time_to_collision`: `overlaps` at every sample time, then the same bisection.
+double time_to_collision_reference(const ego_state& ego, const maneuver& nominal,
+                                   const forecast_obstacle& obstacle, const collision_window& window);
 
 }  // namespace mm
