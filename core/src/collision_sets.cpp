@@ -21,6 +21,7 @@ struct ego_sweep::grid_view {
   std::vector<std::size_t> row_start;  ///< sample index of each row's first column
   std::vector<double> accelerations;   ///< [row] [m/s²]
   std::vector<double> curvatures;      ///< [column] [1/m]
+  bool ascending = false;              ///< both lists ascending (non-strictly)
   std::size_t sample(std::size_t r, std::size_t c) const { return row_start[r] + c; }
 };
 
@@ -33,16 +34,16 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
       start_rotation_(unit_vector(ego.pose.heading)) {
   const double horizon = window.horizon;
   const double cap = ego.limits.speed_cap;
-  straight_.reserve(sample_count_);
+  ego_radius_ = bounding_radius(ego.shape);
+  straight_ = std::make_unique_for_overwrite<straight_part[]>(sample_count_);
+  straight_known_.assign(sample_count_, 0);
+  sample_speed_.reserve(sample_count_);
+  sample_point_speed_.reserve(sample_count_);
   for (const maneuver& u : samples.maneuvers) {
-    // maneuver_local_placement's values for t > T_h, in its order of operations.
-    const placement end = maneuver_local_placement(ego.speed, u, horizon, horizon, cap);
-    straight_.push_back({end.position, end.direction, speed_after(ego.speed, u.acceleration, horizon, cap),
-                         rotated(end.direction, start_rotation_.x, start_rotation_.y)});
-  }
-  for (const maneuver& u : samples.maneuvers) {
-    sample_speed_.push_back(mm::largest_speed(ego, u, horizon));
-    sample_point_speed_.push_back(mm::largest_point_speed(ego, u, horizon));
+    // `largest_speed` and `largest_point_speed`, the bounding radius found once.
+    const double v = mm::largest_speed(ego, u, horizon);
+    sample_speed_.push_back(v);
+    sample_point_speed_.push_back(v * (1.0 + std::abs(u.curvature) * ego_radius_));
   }
   known_.assign(times_.size() * sample_count_, 0);
   placements_ = std::make_unique_for_overwrite<stored[]>(times_.size() * sample_count_);
@@ -56,7 +57,6 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
     if (t > horizon) travel += largest_speed_ * (t - horizon);
     reach_radius_.push_back(travel * (1.0 + 1e-12) + 1e-9);
   }
-  ego_radius_ = bounding_radius(ego.shape);
   // The blocks: the two families' grids stacked by acceleration (they share their curvatures),
   // then their nominal-curvature columns.
   const displacement_set& brake = samples.brake;
@@ -107,7 +107,9 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
   }
   order_.reserve(sample_count_);
   blocks_.reserve(2 * sample_count_);
-  for (const grid_view& g : grids) {
+  for (grid_view& g : grids) {
+    g.ascending = std::is_sorted(g.accelerations.begin(), g.accelerations.end()) &&
+                  std::is_sorted(g.curvatures.begin(), g.curvatures.end());
     roots_.push_back(add_block(g, 0, g.row_start.size(), 0, g.curvatures.size()));
   }
 }
@@ -124,14 +126,25 @@ std::uint32_t ego_sweep::add_block(const grid_view& grid, std::size_t r0, std::s
   const double a_centre = grid.accelerations[rc];
   const double k_centre = grid.curvatures[cc];
   b.top_acceleration = a_centre;
-  for (std::size_t r = r0; r < r1; ++r) {
+  // Over an ascending range each of these maxima is at one of its ends (the rounded differences
+  // and magnitudes are monotonic on either side of the centre): two values instead of all.
+  const auto rows = [&](std::size_t r) {
     b.acceleration_spread = std::max(b.acceleration_spread, std::abs(grid.accelerations[r] - a_centre));
     b.top_acceleration = std::max(b.top_acceleration, grid.accelerations[r]);
     b.largest_deceleration = std::max(b.largest_deceleration, std::abs(grid.accelerations[r]));
-  }
-  for (std::size_t c = c0; c < c1; ++c) {
+  };
+  const auto columns = [&](std::size_t c) {
     b.curvature_spread = std::max(b.curvature_spread, std::abs(grid.curvatures[c] - k_centre));
     b.largest_curvature = std::max(b.largest_curvature, std::abs(grid.curvatures[c]));
+  };
+  if (grid.ascending) {
+    rows(r0);
+    rows(r1 - 1);
+    columns(c0);
+    columns(c1 - 1);
+  } else {
+    for (std::size_t r = r0; r < r1; ++r) rows(r);
+    for (std::size_t c = c0; c < c1; ++c) columns(c);
   }
   if (r1 - r0 == 1 && c1 - c0 == 1) {
     order_.push_back(b.centre);
@@ -223,12 +236,27 @@ double ego_sweep::largest_acceleration(std::size_t k, std::size_t m) const {
 ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
   const vec2 rotation = start_rotation_;
   if (t > window_.horizon) {
-    const straight_part& part = straight_[m];
+    const straight_part& part = straight(m);
     const vec2 local = part.local + (part.speed * (t - window_.horizon)) * part.along;
     return {ego_.pose.position + rotated(local, rotation.x, rotation.y), part.direction};
   }
   return maneuver_placement(ego_.pose, rotation, ego_.speed, samples_.maneuvers[m], t, window_.horizon,
                             ego_.limits.speed_cap);
+}
+
+const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
+  straight_part& part = straight_[m];
+  if (!straight_known_[m]) {
+    // maneuver_local_placement's values for t > T_h, in its order of operations.
+    const double horizon = window_.horizon;
+    const double cap = ego_.limits.speed_cap;
+    const maneuver& u = samples_.maneuvers[m];
+    const placement end = maneuver_local_placement(ego_.speed, u, horizon, horizon, cap);
+    part = {end.position, end.direction, speed_after(ego_.speed, u.acceleration, horizon, cap),
+            rotated(end.direction, start_rotation_.x, start_rotation_.y)};
+    straight_known_[m] = 1;
+  }
+  return part;
 }
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {

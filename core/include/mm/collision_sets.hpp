@@ -159,7 +159,10 @@ class ego_sweep {
   std::size_t sample_count_;
   std::vector<double> times_;
   vec2 start_rotation_;  ///< (cos, sin) of the start heading
-  std::vector<straight_part> straight_;
+  /// `straight_part` of sample m, computed on first use.
+  const straight_part& straight(std::size_t m) const;
+  mutable std::unique_ptr<straight_part[]> straight_;  ///< [m], valid where `straight_known_`
+  mutable std::vector<std::uint8_t> straight_known_;
   std::vector<double> sample_speed_;
   std::vector<double> sample_point_speed_;
   mutable std::vector<std::uint8_t> known_;
