@@ -337,13 +337,12 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   // Without a turn every forecast time gives the same forecast: all times are shared.
   independent_ = motion.yaw_rate == 0.0;
   const double last_tau = count == 0 ? 0.0 : taus_.back();
+  heading_direction_ = unit_vector(motion.pose.heading);
   for (std::size_t k = 0; k < times.size() && (independent_ || times[k] <= last_tau); ++k) {
-    const pose p = forecast_pose(motion, times[k], times[k]);
-    turning_.push_back({p.position, unit_vector(p.heading)});
+    turning_.push_back(independent_ ? straight_forecast(times[k]) : as_placement(forecast_pose(motion, times[k], times[k])));
   }
   for (const double tau : taus_) {
-    const pose p = forecast_pose(motion, tau, tau);
-    turn_end_.push_back({p.position, unit_vector(p.heading)});
+    turn_end_.push_back(independent_ ? straight_forecast(tau) : as_placement(forecast_pose(motion, tau, tau)));
     std::size_t k = 0;
     while (k < times.size() && (independent_ || times[k] <= tau)) ++k;
     first_straight_.push_back(k);
@@ -537,6 +536,13 @@ clearance_field::obstacle_at clearance_field::obstacle_pose(std::size_t i, std::
   return straight_after_turn(i, sweep_.times()[k]);
 }
 
+clearance_field::obstacle_at clearance_field::straight_forecast(double t) const {
+  const motion_estimate& motion = obstacle_.motion;
+  return {motion.pose.position + motion.speed * t * heading_direction_, heading_direction_};
+}
+
+clearance_field::obstacle_at clearance_field::as_placement(const pose& p) { return {p.position, unit_vector(p.heading)}; }
+
 clearance_field::obstacle_at clearance_field::straight_after_turn(std::size_t i, double t) const {
   const obstacle_at& end = turn_end_[i];
   return {end.position + obstacle_.motion.speed * (t - taus_[i]) * end.direction, end.direction};
@@ -545,11 +551,12 @@ clearance_field::obstacle_at clearance_field::straight_after_turn(std::size_t i,
 double clearance_field::clearance_at_time(std::size_t i, std::size_t m, double t) const {
   const ego_sweep::placement e = sweep_.placement_at(m, t);
   obstacle_at o;
-  if (t > taus_[i] && !independent_) {
+  if (independent_) {
+    o = straight_forecast(t);
+  } else if (t > taus_[i]) {
     o = straight_after_turn(i, t);
   } else {
-    const pose p = forecast_pose(obstacle_.motion, taus_[i], t);
-    o = {p.position, unit_vector(p.heading)};
+    o = as_placement(forecast_pose(obstacle_.motion, taus_[i], t));
   }
   return distance(e.position, e.direction, o) - sweep_.window().margin;
 }
@@ -716,7 +723,7 @@ double clearance_field::floor_of_all(std::size_t m) {
   // reference point is within v |ω| t²/2 (and 2 v t) of the straight line at time t.
   const motion_estimate& motion = obstacle_.motion;
   const vec2 start = motion.pose.position;
-  const vec2 along = unit_vector(motion.pose.heading);
+  const vec2 along = heading_direction_;
   const double turn = motion.speed * std::abs(motion.yaw_rate);
   const std::vector<double>& times = sweep_.times();
   const double step = sweep_.window().time_step;

@@ -253,6 +253,11 @@ class clearance_field {
   std::size_t slot(std::size_t i) const { return independent_ ? 0 : i; }
   /// Obstacle placement at time index k under forecast time i.
   obstacle_at obstacle_pose(std::size_t i, std::size_t k) const;
+  /// Obstacle placement at time t of an obstacle that does not turn (ω = 0): `forecast_pose` with
+  /// the heading's direction found once, bit for bit.
+  obstacle_at straight_forecast(double t) const;
+  /// A pose as a placement: the heading as its direction.
+  static obstacle_at as_placement(const pose& p);
   /// Obstacle placement at a time t > τ_i under forecast time i: `forecast_pose`'s straight part,
   /// in its order of operations.
   obstacle_at straight_after_turn(std::size_t i, double t) const;
@@ -331,6 +336,7 @@ class clearance_field {
   std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k (every τ when ω = 0)
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
   std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i (none when ω = 0)
+  vec2 heading_direction_;      ///< (cos, sin) of the obstacle's heading now
   double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
   double obstacle_acceleration_ = 0.0;  ///< of the obstacle's reference point while it turns [m/s²]: v |ω|
   /// Which closed form the distances use: two rectangles, a rectangular ego and a disc, or the
