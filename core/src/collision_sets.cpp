@@ -343,8 +343,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   }
   for (const double tau : taus_) {
     turn_end_.push_back(independent_ ? straight_forecast(tau) : as_placement(forecast_pose(motion, tau, tau)));
-    std::size_t k = 0;
-    while (k < times.size() && (independent_ || times[k] <= tau)) ++k;
+    std::size_t k = independent_ ? times.size() : 0;
+    while (k < times.size() && times[k] <= tau) ++k;
     first_straight_.push_back(k);
   }
   const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
@@ -352,8 +352,6 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   sampled_.assign(slots, sample_mask(samples));
   floor_.assign(slots, {});
   exact_.assign(slots, std::vector<std::uint8_t>(samples, 0));
-  prefix_.assign(samples, prefix_walk{});
-  refined_.assign(samples, {});
 
   // The sampled collisions. The times shared by every forecast time that includes them (t_k ≤ τ:
   // the CTRV placement) are rastered once, in order; each forecast time continues from their state
@@ -591,6 +589,7 @@ double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, 
   // On the shared times (t ≤ τ) the search sees the same function for every τ: search once.
   const bool shared = k + 1 < first_straight_[i];
   if (shared) {
+    if (refined_.empty()) refined_.resize(sweep_.sample_count());
     for (const auto& [argmin, value] : refined_[m]) {
       if (argmin == k) return value;
     }
@@ -649,6 +648,7 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   };
   // The shared times first (kept for larger τ), then this τ's straight part. A seed from a shared
   // time is a value every larger τ shares, so it may prune the shared walk too.
+  if (prefix_.empty()) prefix_.resize(sweep_.sample_count());
   prefix_walk& prefix = prefix_[m];
   const std::size_t shared = first_straight_[i];
   if (prefix.until > shared) prefix = prefix_walk{};
@@ -688,10 +688,9 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   if (!floor.empty() && floor[m] >= ceiling) return floor[m];
   std::size_t k = 0;
   // A walk over the shared times t ≤ τ_i (kept from an earlier exact value) bounds them all.
-  const prefix_walk& prefix = prefix_[m];
   const std::size_t shared = first_straight_[i];
-  if (shared > 0 && prefix.until >= shared) {
-    if (std::min(prefix.minimum.value, walk_cap_) < limit) return exact(forecast, m);
+  if (shared > 0 && !prefix_.empty() && prefix_[m].until >= shared) {
+    if (std::min(prefix_[m].minimum.value, walk_cap_) < limit) return exact(forecast, m);
     k = shared;
   }
   while (k < count) {

@@ -353,8 +353,8 @@ class clearance_field {
   std::vector<double> floor_all_;  ///< [m]: `floor_of_all`, NaN until computed (allocated on first use)
   std::vector<std::vector<std::uint32_t>> argmin_;  ///< [slot][m]: time index of the sampled minimum of an exact value (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;
-  std::vector<prefix_walk> prefix_;                                    ///< [m]
-  std::vector<std::vector<std::pair<std::size_t, double>>> refined_;  ///< [m]: (time index, refined minimum) on shared times
+  std::vector<prefix_walk> prefix_;  ///< [m] (allocated on first use)
+  std::vector<std::vector<std::pair<std::size_t, double>>> refined_;  ///< [m]: (time index, refined minimum) on shared times (allocated on first use)
 };
 
 /// The sampled collision sets of one obstacle for every forecast time, by brute force (the
