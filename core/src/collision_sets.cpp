@@ -22,6 +22,7 @@ struct ego_sweep::grid_view {
   std::vector<double> accelerations;   ///< [row] [m/s²]
   std::vector<double> curvatures;      ///< [column] [1/m]
   bool ascending = false;              ///< both lists ascending (non-strictly)
+  std::vector<double> arc_lengths;     ///< [row] arc length at T_h [m] (when ascending)
   std::size_t sample(std::size_t r, std::size_t c) const { return row_start[r] + c; }
 };
 
@@ -110,6 +111,9 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
   for (grid_view& g : grids) {
     g.ascending = std::is_sorted(g.accelerations.begin(), g.accelerations.end()) &&
                   std::is_sorted(g.curvatures.begin(), g.curvatures.end());
+    if (g.ascending) {
+      for (const double a : g.accelerations) g.arc_lengths.push_back(travelled_distance(ego.speed, a, horizon, cap));
+    }
     roots_.push_back(add_block(g, 0, g.row_start.size(), 0, g.curvatures.size()));
   }
 }
@@ -151,7 +155,10 @@ std::uint32_t ego_sweep::add_block(const grid_view& grid, std::size_t r0, std::s
   } else {
     // Halve the side along which the samples' placements spread more (measured at T_h).
     const double horizon = window_.horizon;
-    const double s = travelled_distance(ego_.speed, b.top_acceleration, horizon, ego_.limits.speed_cap);
+    // The arc length at T_h of the block's top acceleration (that of its last row when ascending).
+    const double s = grid.ascending && b.top_acceleration == grid.accelerations[r1 - 1]
+                         ? grid.arc_lengths[r1 - 1]
+                         : travelled_distance(ego_.speed, b.top_acceleration, horizon, ego_.limits.speed_cap);
     const double along_a = (grid.accelerations[r1 - 1] - grid.accelerations[r0]) * 0.5 * horizon * horizon;
     const double along_k = (grid.curvatures[c1 - 1] - grid.curvatures[c0]) * s * (0.5 * s + ego_radius_);
     const bool split_rows = c1 - c0 == 1 || (r1 - r0 > 1 && std::abs(along_a) >= std::abs(along_k));

@@ -63,7 +63,8 @@ double area_element_primitive(double arc_length, double curvature) {
 
 displacement_set available_displacements(double initial_speed, const ego_limits& limits,
                                          double horizon, family fam,
-                                         const sampling_resolution& resolution, bool node_weights) {
+                                         const sampling_resolution& resolution, bool node_weights,
+                                         bool end_points) {
   displacement_set set;
   set.fam = fam;
   set.min_acceleration = fam == family::brake ? -limits.max_deceleration : 0.0;
@@ -86,7 +87,7 @@ displacement_set available_displacements(double initial_speed, const ego_limits&
       const double weight = !node_weights            ? 0.0
                             : set.max_curvature > 0.0 ? cell_area(s0, s1, k.lo, k.hi)
                                                       : area_element_primitive(s1, 0.0) - area_element_primitive(s0, 0.0);
-      set.samples.push_back({{a.node, k.node}, arc_point(k.node, s), std::max(weight, 0.0)});
+      set.samples.push_back({{a.node, k.node}, end_points ? arc_point(k.node, s) : vec2{}, std::max(weight, 0.0)});
       set.area += set.samples.back().area_weight;
     }
   }

@@ -24,10 +24,11 @@ double maneuver_samples::total_weight(family f) const {
 }
 
 maneuver_samples sample_maneuvers(const ego_state& ego, double nominal_curvature, double horizon,
-                                  const sampling_resolution& resolution, bool node_weights) {
+                                  const sampling_resolution& resolution, bool node_weights, bool end_points) {
   maneuver_samples out;
-  out.brake = available_displacements(ego.speed, ego.limits, horizon, family::brake, resolution, node_weights);
-  out.accelerate = available_displacements(ego.speed, ego.limits, horizon, family::accelerate, resolution, node_weights);
+  out.brake = available_displacements(ego.speed, ego.limits, horizon, family::brake, resolution, node_weights, end_points);
+  out.accelerate =
+      available_displacements(ego.speed, ego.limits, horizon, family::accelerate, resolution, node_weights, end_points);
   const double kappa_max = out.brake.max_curvature;
   out.nominal_curvature = std::clamp(nominal_curvature, -kappa_max, kappa_max);
 
@@ -44,7 +45,7 @@ maneuver_samples sample_maneuvers(const ego_state& ego, double nominal_curvature
     for (std::size_t ia = 0; ia < set->acceleration_count; ++ia) {
       const double a = set->samples[ia * set->curvature_count].u.acceleration;
       const double s = travelled_distance(ego.speed, a, horizon, ego.limits.speed_cap);
-      add({a, out.nominal_curvature}, set->fam, 0.0, arc_point(out.nominal_curvature, s));
+      add({a, out.nominal_curvature}, set->fam, 0.0, end_points ? arc_point(out.nominal_curvature, s) : vec2{});
     }
   }
   return out;

@@ -406,9 +406,11 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     return result;
   }
 
-  // The fast indices read only the weights of the cells between nodes; the reference counts nodes.
+  // The fast indices read only the weights of the cells between nodes; the reference counts nodes,
+  // and the end points are only drawn (`record_samples`).
+  const bool full_samples = options.reference || config.record_samples;
   const maneuver_samples samples = sample_maneuvers(ego, nominal.curvature, config.displacement_horizon,
-                                                    options.resolution, options.reference || config.record_samples);
+                                                    options.resolution, full_samples, full_samples);
   evaluator evaluate(samples, options.reference);
 
   // Clearances per obstacle and forecast time (spec §5), and TTC (spec §6).

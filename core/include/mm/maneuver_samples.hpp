@@ -39,9 +39,11 @@ struct maneuver_samples {
 };
 
 /// Samples both families of `ego` at `resolution` over the displacement horizon [T_h, s], and the
-/// nominal-curvature columns for `nominal_curvature` (clamped to ±κ_max). `node_weights`: see
-/// `available_displacements` (without them `area_weights` are all 0).
+/// nominal-curvature columns for `nominal_curvature` (clamped to ±κ_max). `node_weights` and
+/// `end_points`: see `available_displacements` (without them `area_weights` are all 0, and
+/// `end_points` all (0, 0)).
 maneuver_samples sample_maneuvers(const ego_state& ego, double nominal_curvature, double horizon,
-                                  const sampling_resolution& resolution, bool node_weights = true);
+                                  const sampling_resolution& resolution, bool node_weights = true,
+                                  bool end_points = true);
 
 }  // namespace mm
