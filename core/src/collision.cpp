@@ -6,14 +6,38 @@
 namespace mm {
 namespace {
 
-bool overlaps_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle,
-                 double forecast_time, double t, const collision_window& window) {
+/// Whether the ego executing `u` and the obstacle forecast with `forecast_time` overlap at time t,
+/// and the squared distance of their reference points [m²].
+struct overlap_check {
+  bool overlaps;
+  double squared_distance;
+};
+
+overlap_check check_overlap(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle,
+                            double forecast_time, double t, const collision_window& window) {
   const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
   const pose obstacle_pose = forecast_pose(obstacle.motion, forecast_time, t);
   // Footprints lie within their bounding discs: apart when the discs are.
   const double reach = bounding_radius(ego.shape) + bounding_radius(obstacle.shape) + window.margin;
-  if (squared_norm(ego_pose.position - obstacle_pose.position) >= reach * reach) return false;
-  return overlaps(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose), window.margin);
+  const double squared = squared_norm(ego_pose.position - obstacle_pose.position);
+  if (squared >= reach * reach) return {false, squared};
+  return {overlaps(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose), window.margin), squared};
+}
+
+bool overlaps_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle,
+                 double forecast_time, double t, const collision_window& window) {
+  return check_overlap(ego, u, obstacle, forecast_time, t, window).overlaps;
+}
+
+/// The first time of overlap in (free, hit] to 1e-4 s, by bisection: none at `free`, one at `hit`
+/// (the obstacle forecast with its CTRV motion for the whole window).
+double bisected_collision(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
+                          const collision_window& window, double free, double hit) {
+  while (hit - free > 1e-4) {
+    const double mid = 0.5 * (free + hit);
+    (overlaps_at(ego, nominal, obstacle, window.duration, mid, window) ? hit : free) = mid;
+  }
+  return hit;
 }
 
 }  // namespace
@@ -80,7 +104,6 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
 
 double time_to_collision(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
                          const collision_window& window) {
-  const double whole_window = window.duration;
   const std::vector<double> times = sample_times(window.duration, window.time_step);
   const double cap = ego.limits.speed_cap;
   const double reach = bounding_radius(ego.shape) + bounding_radius(obstacle.shape) + window.margin;
@@ -91,23 +114,13 @@ double time_to_collision(const ego_state& ego, const maneuver& nominal, const fo
                       std::abs(obstacle.motion.speed);
   for (std::size_t k = 0; k < times.size();) {
     const double t = times[k];
-    const pose ego_pose = maneuver_pose(ego.pose, ego.speed, nominal, t, window.horizon, cap);
-    const pose obstacle_pose = forecast_pose(obstacle.motion, whole_window, t);
-    const double squared = squared_norm(ego_pose.position - obstacle_pose.position);
-    if (squared < reach * reach &&
-        overlaps(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose), window.margin)) {
-      // `overlaps_at` at t, as the reference's walk over every sample time.
+    const overlap_check at = check_overlap(ego, nominal, obstacle, window.duration, t, window);
+    if (at.overlaps) {
       if (t == 0.0) return 0.0;
-      double free = times[k - 1];
-      double hit = t;
-      while (hit - free > 1e-4) {
-        const double mid = 0.5 * (free + hit);
-        (overlaps_at(ego, nominal, obstacle, whole_window, mid, window) ? hit : free) = mid;
-      }
-      return hit;
+      return bisected_collision(ego, nominal, obstacle, window, times[k - 1], t);
     }
     // Skipped times are provably apart (lowered by a rounding slack); the grid's steps are ≤ time_step.
-    const double gap = std::sqrt(squared) - reach - 1e-9;
+    const double gap = std::sqrt(at.squared_distance) - reach - 1e-9;
     std::size_t skip = 0;
     if (gap > 0.0 && rate > 0.0) {
       const double steps = gap * (1.0 - 1e-9) / (rate * window.time_step);
@@ -122,18 +135,11 @@ double time_to_collision(const ego_state& ego, const maneuver& nominal, const fo
 
 double time_to_collision_reference(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
                                    const collision_window& window) {
-  const double whole_window = window.duration;
   double previous = 0.0;
   for (const double t : sample_times(window.duration, window.time_step)) {
-    if (overlaps_at(ego, nominal, obstacle, whole_window, t, window)) {
+    if (overlaps_at(ego, nominal, obstacle, window.duration, t, window)) {
       if (t == 0.0) return 0.0;
-      double free = previous;
-      double hit = t;
-      while (hit - free > 1e-4) {
-        const double mid = 0.5 * (free + hit);
-        (overlaps_at(ego, nominal, obstacle, whole_window, mid, window) ? hit : free) = mid;
-      }
-      return hit;
+      return bisected_collision(ego, nominal, obstacle, window, previous, t);
     }
     previous = t;
   }

@@ -41,10 +41,9 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
   sample_speed_.reserve(sample_count_);
   sample_point_speed_.reserve(sample_count_);
   for (const maneuver& u : samples.maneuvers) {
-    // `largest_speed` and `largest_point_speed`, the bounding radius found once.
     const double v = mm::largest_speed(ego, u, horizon);
     sample_speed_.push_back(v);
-    sample_point_speed_.push_back(v * (1.0 + std::abs(u.curvature) * ego_radius_));
+    sample_point_speed_.push_back(mm::largest_point_speed(v, u.curvature, ego_radius_));
   }
   known_.assign(times_.size() * sample_count_, 0);
   placements_ = std::make_unique_for_overwrite<stored[]>(times_.size() * sample_count_);
@@ -278,8 +277,12 @@ double largest_speed(const ego_state& ego, const maneuver& u, double horizon) {
   return std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
 }
 
+double largest_point_speed(double largest_speed, double curvature, double radius) {
+  return largest_speed * (1.0 + std::abs(curvature) * radius);
+}
+
 double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon) {
-  return largest_speed(ego, u, horizon) * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
+  return largest_point_speed(largest_speed(ego, u, horizon), u.curvature, bounding_radius(ego.shape));
 }
 
 double largest_point_speed(const forecast_obstacle& obstacle) {

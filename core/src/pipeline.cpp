@@ -64,7 +64,7 @@ class evaluator {
   /// max(MI−, MI+) with obstacle j alone at forecast index i; `rough` as in `room_of`. Remembered,
   /// with the forecast index of an obstacle whose clearances do not depend on it taken as 0.
   double room_alone(std::size_t j, std::size_t i, bool rough) {
-    if (!reference_ && (fields_[j].inert() || fields_[j].forecast_independent())) i = 0;
+    if (!forecast_matters(j)) i = 0;
     const std::array<std::size_t, 3> key{j, i, rough ? 1u : 0u};
     if (const auto it = rooms_alone_.find(key); it != rooms_alone_.end()) return it->second;
     const std::pair<std::size_t, std::size_t> part{j, i};
@@ -121,8 +121,10 @@ class evaluator {
   /// Fast path: true when some obstacle's clearances depend on its forecast time (it turns, and
   /// is not inert).
   bool depends_on_forecast_time() const {
-    return std::any_of(fields_.begin(), fields_.end(),
-                       [](const clearance_field& f) { return !f.inert() && !f.forecast_independent(); });
+    for (std::size_t j = 0; j < fields_.size(); ++j) {
+      if (forecast_matters(j)) return true;
+    }
+    return false;
   }
 
   /// True when obstacle j collides with some sample under one of the forecast indices `which`
@@ -169,15 +171,19 @@ class evaluator {
   }
 
  private:
+  /// False when obstacle j's clearances are the same under every forecast time (fast path: it is
+  /// inert, or does not turn); the reference's sets are kept per forecast time.
+  bool forecast_matters(std::size_t j) const {
+    return reference_ || (!fields_[j].inert() && !fields_[j].forecast_independent());
+  }
+
   /// The key of `rooms_` for an assignment: obstacles whose forecast time changes nothing (inert, or
   /// not turning) at forecast index 0, and `rough_key` appended for a rough room (fast path).
   const std::vector<std::size_t>& room_key(std::span<const std::size_t> index, bool rough) {
     std::vector<std::size_t>& key = scratch_key_;
     key.assign(index.begin(), index.end());
-    if (!reference_) {
-      for (std::size_t j = 0; j < key.size(); ++j) {
-        if (fields_[j].inert() || fields_[j].forecast_independent()) key[j] = 0;
-      }
+    for (std::size_t j = 0; j < key.size(); ++j) {
+      if (!forecast_matters(j)) key[j] = 0;
     }
     if (!reference_ && rough) key.push_back(rough_key);
     return key;

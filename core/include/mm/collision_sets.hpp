@@ -40,6 +40,10 @@ double largest_speed(const ego_state& ego, const maneuver& u, double horizon);
 /// v_max (1 + |κ| R).
 double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon);
 
+/// The same from the reference point's largest speed [m/s], the curvature [1/m] and the footprint's
+/// bounding radius [m]: v_max (1 + |κ| R).
+double largest_point_speed(double largest_speed, double curvature, double radius);
+
 /// Largest speed [m/s] of any point of the obstacle's footprint under any forecast: v + |ω| R.
 double largest_point_speed(const forecast_obstacle& obstacle);
 
