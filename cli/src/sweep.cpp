@@ -202,7 +202,10 @@ sweep_result run_one(const sweep_spec& spec, const sweep_run& run, const std::fi
       settings.out_dir = runs_dir / run.run_dir;
       metrics = run_scenario(loaded, settings).metrics;
     } else {
-      mm::sim::simulation sim(loaded.scenario);
+      // Nobody reads this run's maps: the planner evaluates only what the decisions need.
+      mm::sim::run_options run_options;
+      run_options.map_columns = false;
+      mm::sim::simulation sim(loaded.scenario, run_options);
       mm::sim::run(sim);
       metrics = sim.all_metrics();
     }

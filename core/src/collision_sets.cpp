@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 #include <variant>
 
 namespace mm {
@@ -316,8 +318,17 @@ constexpr std::size_t second_order_steps = 2;
 }  // namespace
 
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
-                                 std::span<const double> forecast_times, double cap)
-    : sweep_(sweep), obstacle_(obstacle), taus_(forecast_times.begin(), forecast_times.end()), cap_(cap) {
+                                 std::span<const double> forecast_times, double cap,
+                                 std::span<const std::uint8_t> wanted)
+    : sweep_(sweep),
+      obstacle_(obstacle),
+      taus_(forecast_times.begin(), forecast_times.end()),
+      wanted_(wanted.begin(), wanted.end()),
+      cap_(cap) {
+  if (!wanted_.empty() && wanted_.size() != taus_.size()) {
+    throw std::invalid_argument("clearance_field: wanted has " + std::to_string(wanted_.size()) +
+                                " entries for " + std::to_string(taus_.size()) + " forecast times");
+  }
   const std::vector<double>& times = sweep.times();
   const motion_estimate& motion = obstacle.motion;
   const collision_window& window = sweep.window();
@@ -383,7 +394,16 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   for (const std::uint32_t root : sweep.roots()) shared.wait(0, root);
   std::size_t shared_done = 0;
   raster_state own;
+  // A slot is computed when a forecast time it serves is wanted (every one shares slot 0 without a turn).
+  const auto slot_wanted = [&](std::size_t i) {
+    if (!independent_) return evaluated(i);
+    for (std::size_t f = 0; f < count; ++f) {
+      if (evaluated(f)) return true;
+    }
+    return false;
+  };
   for (std::size_t i = 0; i < slots; ++i) {
+    if (!slot_wanted(i)) continue;
     for (; shared_done < first_straight_[i]; ++shared_done) {
       if (out_of_reach(shared_done, turning_[shared_done])) {
         shared.postpone(shared_done);

@@ -9,7 +9,9 @@
 #include <limits>
 #include <map>
 #include <optional>
+#include <span>
 #include <utility>
+#include <vector>
 
 #include "mm/assignment_search.hpp"
 #include "mm/collision_sets.hpp"
@@ -48,10 +50,15 @@ class evaluator {
 
   /// Reference: the collision sets of obstacle j, per forecast time, as ±1 clearances.
   void add_reference(std::vector<clearance_set> sets) { reference_sets_.push_back(std::move(sets)); }
-  /// Fast path: the clearance field of the next obstacle.
-  void add_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> taus) {
-    fields_.emplace_back(sweep, obstacle, taus, clearance_cap);
+  /// Fast path: the clearance field of the next obstacle, computing the forecast times `wanted`
+  /// (empty: every one).
+  void add_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> taus,
+                 std::span<const std::uint8_t> wanted) {
+    fields_.emplace_back(sweep, obstacle, taus, clearance_cap, wanted);
   }
+
+  /// A buffer for a column that is not kept.
+  clearance_set& scratch_column() { return scratch_set_; }
 
   /// Sample-wise minimum over the obstacles, obstacle j at forecast index index[j] (the union of
   /// the [CSS]); on the fast path exact wherever the indices read it.
@@ -399,8 +406,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
     // Nothing can reach the ego: every index is 1 and the nominal maneuver is safe (spec §9: far
     // obstacles cost nothing). The same result as the general path, without sampling anything.
     result.time_to_collision = no_collision;
-    result.mi_brake.assign(tau_count, 1.0);
-    result.mi_accelerate.assign(tau_count, 1.0);
+    if (config.map_column) {
+      result.mi_brake.assign(tau_count, 1.0);
+      result.mi_accelerate.assign(tau_count, 1.0);
+    }
     result.excluded = excluded_forecast_times(taus, result.time_to_collision);
     result.selected_family = select_family(1.0, 1.0);
     if (config.policy.kind == forecast_policy_kind::constant) {
@@ -419,8 +428,49 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
                                                     options.resolution, full_samples, full_samples);
   evaluator evaluate(samples, options.reference);
 
-  // Clearances per obstacle and forecast time (spec §5), and TTC (spec §6).
+  // TTC per obstacle (spec §6): obstacle j may be forecast with τ_i ≤ TTC_j (and always τ_0 = 0).
   std::vector<double> ttc(n, no_collision);
+  for (std::size_t j = 0; j < n; ++j) {
+    ttc[j] = time_to_collision(ego, nominal, relevant[j], window);
+    result.obstacles[relevant_track[j]].time_to_collision = ttc[j];
+  }
+  result.time_to_collision = n == 0 ? no_collision : *std::min_element(ttc.begin(), ttc.end());
+  result.excluded = excluded_forecast_times(taus, result.time_to_collision);
+  assignment_problem problem;
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<std::size_t> allowed;
+    for (std::size_t i = 0; i < tau_count; ++i) {
+      if (i == 0 || taus[i] <= ttc[j]) allowed.push_back(i);
+    }
+    problem.candidates.push_back(std::move(allowed));
+  }
+  const bool constant_policy = config.policy.kind == forecast_policy_kind::constant;
+  std::vector<std::size_t> assignment(n, 0);
+  if (constant_policy) {
+    const auto fixed = static_cast<std::size_t>(std::lround(config.policy.constant_forecast_time / config.forecast_step));
+    for (std::size_t j = 0; j < n; ++j) {
+      const auto& c = problem.candidates[j];
+      assignment[j] = *std::prev(std::upper_bound(c.begin(), c.end(), fixed));  // capped at TTC_j
+    }
+  }
+
+  // Which forecast times are evaluated: every one for the map's column; otherwise only those the
+  // decision reads — the constant policy's (capped at TTC), or every obstacle's candidates under
+  // ADJ. Each evaluated set is the same, bit for bit, whichever others are evaluated.
+  const bool whole_column = config.map_column || config.record_samples || options.reference;
+  std::vector<std::uint8_t> wanted;
+  const auto wanted_of = [&](std::size_t j) -> std::span<const std::uint8_t> {
+    if (whole_column) return {};
+    wanted.assign(tau_count, 0);
+    if (constant_policy) {
+      wanted[assignment[j]] = 1;
+    } else {
+      for (const std::size_t i : problem.candidates[j]) wanted[i] = 1;
+    }
+    return wanted;
+  };
+
+  // Clearances per obstacle and forecast time (spec §5).
   std::optional<ego_sweep> sweep;
   if (!options.reference && n > 0) sweep.emplace(ego, samples, window);
   for (std::size_t j = 0; j < n; ++j) {
@@ -433,41 +483,46 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
       }
       evaluate.add_reference(std::move(sets));
     } else {
-      evaluate.add_field(*sweep, relevant[j], taus);
+      evaluate.add_field(*sweep, relevant[j], taus, wanted_of(j));
     }
-    ttc[j] = time_to_collision(ego, nominal, relevant[j], window);
-    result.obstacles[relevant_track[j]].time_to_collision = ttc[j];
   }
-  result.time_to_collision = n == 0 ? no_collision : *std::min_element(ttc.begin(), ttc.end());
 
   // The map column: every obstacle forecast with τ_i (spec §6). When no obstacle's clearances
   // depend on its forecast time (none turns, or those that do cannot come near), every τ_i gives
-  // the same set, bit for bit: it is computed once.
+  // the same set, bit for bit: it is computed once. Without the map, ADJ with one obstacle still
+  // needs the indices of the forecast times it may select.
   std::vector<clearance_set> clearance_by_forecast;
   const bool column_constant = !options.reference && !evaluate.depends_on_forecast_time();
-  for (std::size_t i = 0; i < tau_count; ++i) {
-    if (column_constant && i > 0) {
-      clearance_by_forecast.push_back(clearance_by_forecast.back());
-      result.mi_brake.push_back(result.mi_brake.back());
-      result.mi_accelerate.push_back(result.mi_accelerate.back());
-      continue;
-    }
-    clearance_by_forecast.emplace_back();
-    const maneuverability_pair mi = evaluate.column(i, clearance_by_forecast.back());
-    result.mi_brake.push_back(mi.brake);
-    result.mi_accelerate.push_back(mi.accelerate);
-  }
-  result.excluded = excluded_forecast_times(taus, result.time_to_collision);
-
-  // Forecast times (spec §7, §9): obstacle j may use τ_i ≤ TTC_j (and always τ_0 = 0).
-  assignment_problem problem;
-  for (std::size_t j = 0; j < n; ++j) {
-    std::vector<std::size_t> allowed;
+  const bool adjustable_alone = !constant_policy && n == 1;
+  std::vector<double> mi_brake;
+  std::vector<double> mi_accelerate;
+  if (whole_column || adjustable_alone) {
+    std::optional<maneuverability_pair> first;
     for (std::size_t i = 0; i < tau_count; ++i) {
-      if (i == 0 || taus[i] <= ttc[j]) allowed.push_back(i);
+      if (!whole_column && result.excluded[i] != 0) {
+        mi_brake.push_back(0.0);  // never read: excluded from selection
+        mi_accelerate.push_back(0.0);
+        continue;
+      }
+      maneuverability_pair mi;
+      if (column_constant && first) {
+        if (whole_column) clearance_by_forecast.push_back(clearance_by_forecast.back());
+        mi = *first;
+      } else {
+        clearance_set& c = whole_column ? clearance_by_forecast.emplace_back() : evaluate.scratch_column();
+        mi = evaluate.column(i, c);
+        first = mi;
+      }
+      mi_brake.push_back(mi.brake);
+      mi_accelerate.push_back(mi.accelerate);
     }
-    problem.candidates.push_back(std::move(allowed));
   }
+  if (whole_column) {
+    result.mi_brake = mi_brake;
+    result.mi_accelerate = mi_accelerate;
+  }
+
+  // Forecast times (spec §7, §9).
   // The fast search climbs by rough rooms (signs only) and ranks the best of what it met by their
   // rooms; the exhaustive one, the reference, by the rooms alone.
   problem.room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, false); };
@@ -477,15 +532,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
   }
   problem.room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, false); };
 
-  std::vector<std::size_t> assignment(n, 0);
-  if (config.policy.kind == forecast_policy_kind::constant) {
-    const auto wanted = static_cast<std::size_t>(std::lround(config.policy.constant_forecast_time / config.forecast_step));
-    for (std::size_t j = 0; j < n; ++j) {
-      const auto& c = problem.candidates[j];
-      assignment[j] = *std::prev(std::upper_bound(c.begin(), c.end(), wanted));
-    }
+  if (constant_policy) {
+    // The assignment is fixed above.
   } else if (n == 1) {
-    assignment[0] = adjustable_forecast_index(result.mi_brake, result.mi_accelerate, result.excluded);
+    assignment[0] = adjustable_forecast_index(mi_brake, mi_accelerate, result.excluded);
   } else if (n > 1) {
     if (options.assignment_search == assignment_search_kind::exhaustive) {
       const std::size_t count = assignment_count(problem);

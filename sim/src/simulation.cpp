@@ -410,6 +410,7 @@ struct simulation::impl {
     input.ego.limits = spec.limits;
     input.nominal = nominal;
     input.config = spec.planner;
+    if (!options.map_columns) input.config.map_column = false;
     const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
     std::size_t count = 0;
     for (agent_id j = 0; j < infos.size(); ++j) {

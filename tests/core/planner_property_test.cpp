@@ -86,6 +86,40 @@ TEST(planner_properties, the_same_input_gives_the_same_result) {
   }
 }
 
+TEST(planner_properties, planning_without_the_map_column_decides_the_same_bit_for_bit) {
+  std::mt19937_64 rng(testing::property_seed() + 7);
+  const std::size_t count = testing::property_count(120);
+  std::size_t cheaper = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = random_setting(rng);
+    plan_input decision_only = in;
+    decision_only.config.map_column = false;
+    const plan_result full = plan(in);
+    const plan_result lean = plan(decision_only);
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    ASSERT_TRUE(full.ok() && lean.ok());
+    EXPECT_TRUE(lean.mi_brake.empty() && lean.mi_accelerate.empty());
+    EXPECT_EQ(lean.forecast_times, full.forecast_times);
+    EXPECT_EQ(lean.command, full.command);
+    EXPECT_EQ(lean.mode, full.mode);
+    EXPECT_EQ(lean.forecast_index, full.forecast_index);
+    EXPECT_EQ(lean.forecast_time, full.forecast_time);
+    EXPECT_EQ(lean.selected_family, full.selected_family);
+    EXPECT_EQ(lean.mi_brake_selected, full.mi_brake_selected);
+    EXPECT_EQ(lean.mi_accelerate_selected, full.mi_accelerate_selected);
+    EXPECT_EQ(lean.excluded, full.excluded);
+    EXPECT_EQ(lean.time_to_collision, full.time_to_collision);
+    ASSERT_EQ(lean.obstacles.size(), full.obstacles.size());
+    for (std::size_t j = 0; j < full.obstacles.size(); ++j) {
+      EXPECT_EQ(lean.obstacles[j].forecast_index, full.obstacles[j].forecast_index) << "obstacle " << j;
+      EXPECT_EQ(lean.obstacles[j].time_to_collision, full.obstacles[j].time_to_collision) << "obstacle " << j;
+    }
+    // Bound checks also count the walks of values, which can cost more without the column's values to seed them.
+    cheaper += lean.work.bound_checks < full.work.bound_checks ? 1 : 0;
+  }
+  EXPECT_GT(cheaper, count / 10) << "leaving the map out should save work in many scenes, or this test checks little";
+}
+
 /// Margin between the best and the second-best forecast time of ADJ.
 double adjustable_margin(const plan_result& r) {
   std::vector<double> rooms;

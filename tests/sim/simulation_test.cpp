@@ -6,6 +6,7 @@
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "sim/scenarios.hpp"
@@ -363,6 +364,36 @@ TEST(simulation, planning_the_vehicles_of_a_step_on_several_threads_gives_bit_id
     ASSERT_EQ(one[i], two[i]) << "value " << i;
     ASSERT_EQ(one[i], three[i]) << "value " << i;
   }
+}
+
+TEST(simulation, a_run_without_the_map_columns_makes_the_same_decisions_bit_for_bit) {
+  const auto record = [](bool map_columns) {
+    run_options options;
+    options.map_columns = map_columns;
+    simulation sim(six_crossing_vehicles(), options);
+    std::vector<double> values;
+    std::size_t columns = 0;
+    run(sim, [&](const simulation& s) {
+      for (const agent_state& a : s.states()) {
+        values.insert(values.end(), {a.pose.position.x, a.pose.position.y, a.pose.heading, a.speed, a.acceleration, a.curvature});
+      }
+      for (agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
+        if (const plan_record* p = s.last_plan(id); p != nullptr && s.planned_now(id)) {
+          const mm::plan_result& r = p->result;
+          values.insert(values.end(), {r.forecast_time, r.mi_brake_selected, r.mi_accelerate_selected, r.time_to_collision,
+                                       static_cast<double>(r.mode), static_cast<double>(r.selected_family)});
+          columns += r.mi_brake.size();
+        }
+      }
+    });
+    return std::pair(values, columns);
+  };
+  const auto [with_map, columns] = record(true);
+  const auto [without_map, none] = record(false);
+  EXPECT_GT(columns, 0u);
+  EXPECT_EQ(none, 0u) << "no column is computed without the map";
+  ASSERT_EQ(with_map.size(), without_map.size());
+  for (std::size_t i = 0; i < with_map.size(); ++i) ASSERT_EQ(with_map[i], without_map[i]) << "value " << i;
 }
 
 }  // namespace

@@ -82,7 +82,8 @@ nlohmann::json to_json(const plan_input& in) {
         {"max_time_step", c.max_time_step},
         {"assignment_search", std::string(to_string(c.assignment_search))},
         {"max_exhaustive_assignments", c.max_exhaustive_assignments},
-        {"record_samples", c.record_samples}}}};
+        {"record_samples", c.record_samples},
+        {"map_column", c.map_column}}}};
 }
 
 plan_input plan_input_from_json(const nlohmann::json& j) {
@@ -138,6 +139,8 @@ plan_input plan_input_from_json(const nlohmann::json& j) {
   }
   config.max_exhaustive_assignments = c.at("max_exhaustive_assignments").get<std::size_t>();
   config.record_samples = c.at("record_samples").get<bool>();
+  // Inputs saved before the key existed planned the whole column.
+  config.map_column = c.contains("map_column") ? c.at("map_column").get<bool>() : true;
   return in;
 }
 

@@ -209,10 +209,15 @@ class ego_sweep {
 /// Holds mutable caches (the exact values): one field must not be used by two threads at once.
 class clearance_field {
  public:
+  /// `wanted[i]` ≠ 0 for the forecast times whose sets are computed; empty: every one. The sets of
+  /// the others are left empty (no sampled collision, +cap) and must not be asked for; what is
+  /// computed does not depend on which others are wanted, bit for bit.
   clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
-                  double cap);
+                  double cap, std::span<const std::uint8_t> wanted = {});
 
   std::size_t forecast_count() const { return taus_.size(); }
+  /// True when the set of forecast time i was computed (`wanted`).
+  bool evaluated(std::size_t i) const { return wanted_.empty() || wanted_[i] != 0; }
   /// Entry [m] of forecast time i: the exact clearance where known, else −cap for a sampled
   /// collision and +cap otherwise.
   const clearance_set& set(std::size_t i) const { return sets_[slot(i)]; }
@@ -330,6 +335,7 @@ class clearance_field {
   const ego_sweep& sweep_;
   forecast_obstacle obstacle_;
   std::vector<double> taus_;
+  std::vector<std::uint8_t> wanted_;  ///< [i]: the set of forecast time i is computed (empty: every one)
   double cap_;
   double walk_cap_;
   double reach_;          ///< bounding radii of ego and obstacle, and the rounding slack [m]

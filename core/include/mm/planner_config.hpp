@@ -30,6 +30,13 @@ struct planner_config {
   assignment_search_kind assignment_search = assignment_search_kind::coordinate_ascent;  ///< spec §9
   std::size_t max_exhaustive_assignments = 1'000'000;  ///< refuse an exhaustive search larger than this
   bool record_samples = false;  ///< fill `plan_result::samples` (for drawing the sets)
+  /// Compute the column of the Maneuverability Map (`plan_result::mi_brake`, `mi_accelerate`: every
+  /// forecast time, spec §6). When false, only the forecast times the decision reads are evaluated —
+  /// the constant policy's (capped at TTC), or under ADJ those not excluded (with several obstacles,
+  /// each obstacle's τ_i ≤ TTC_j) — and the two vectors are left empty; everything else (command,
+  /// mode, τ̄, family, the selected indices, TTC, `excluded`) is the same, bit for bit. For runs whose
+  /// maps nobody reads, such as the runs of a sweep. `record_samples` computes the column anyway.
+  bool map_column = true;
 };
 
 /// The forecast grid τ_i = i·Δτ [s] (spec §4).

@@ -83,6 +83,11 @@ struct run_options {
   /// thread only; 0 means 1). Each vehicle's decision depends only on the states at the start of
   /// the step, so any value gives bit-identical outputs.
   std::size_t jobs = 1;
+  /// Compute the column of the Maneuverability Map at every planning step (`mm::planner_config::
+  /// map_column`, `plan_record::result.mi_brake`/`mi_accelerate`). Off for runs whose maps nobody
+  /// reads, such as a sweep's: only the forecast times the decisions read are evaluated, and every
+  /// decision, so the whole run, is the same, bit for bit.
+  bool map_columns = true;
 };
 
 /// A run of a scenario on a fixed time grid t_k = k·dt (pure computation, no I/O).
