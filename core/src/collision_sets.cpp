@@ -29,36 +29,8 @@ struct ego_sweep::grid_view {
 };
 
 ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window)
-    : ego_(ego),
-      samples_(samples),
-      window_(window),
-      sample_count_(samples.size()),
-      times_(sample_times(window.duration, window.time_step)),
-      start_rotation_(unit_vector(ego.pose.heading)) {
-  const double horizon = window.horizon;
-  const double cap = ego.limits.speed_cap;
+    : ego_(ego), samples_(samples), window_(window), sample_count_(samples.size()) {
   ego_radius_ = bounding_radius(ego.shape);
-  straight_ = std::make_unique_for_overwrite<straight_part[]>(sample_count_);
-  straight_known_.assign(sample_count_, 0);
-  sample_speed_.reserve(sample_count_);
-  sample_point_speed_.reserve(sample_count_);
-  for (const maneuver& u : samples.maneuvers) {
-    const double v = mm::largest_speed(ego, u, horizon);
-    sample_speed_.push_back(v);
-    sample_point_speed_.push_back(mm::largest_point_speed(v, u.curvature, ego_radius_));
-  }
-  known_.assign(times_.size() * sample_count_, 0);
-  placements_ = std::make_unique_for_overwrite<stored[]>(times_.size() * sample_count_);
-  largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, horizon, cap);
-  largest_point_speed_ = largest_speed_ * (1.0 + max_curvature(ego.speed, ego.limits) * bounding_radius(ego.shape));
-  // Every sample's reference point lies within its arc length of the start, and no sample travels
-  // farther than the one at a_max.
-  reach_radius_.reserve(times_.size());
-  for (const double t : times_) {
-    double travel = travelled_distance(ego.speed, ego.limits.max_acceleration, std::min(t, horizon), cap);
-    if (t > horizon) travel += largest_speed_ * (t - horizon);
-    reach_radius_.push_back(travel * (1.0 + 1e-12) + 1e-9);
-  }
   // The blocks: the two families' grids stacked by acceleration (they share their curvatures),
   // then their nominal-curvature columns.
   const displacement_set& brake = samples.brake;
@@ -95,27 +67,93 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
       grids.push_back(std::move(g));
     }
   }
+  order_.reserve(sample_count_);
+  blocks_.reserve(2 * sample_count_);
+  for (grid_view& g : grids) add_root(g);
+  grid_blocks_ = blocks_.size();
+  grid_order_ = order_.size();
+  grid_roots_ = roots_.size();
+  start(ego, window);
+}
+
+void ego_sweep::add_root(grid_view& grid) {
+  grid.ascending = std::is_sorted(grid.accelerations.begin(), grid.accelerations.end()) &&
+                   std::is_sorted(grid.curvatures.begin(), grid.curvatures.end());
+  if (grid.ascending) {
+    for (const double a : grid.accelerations) {
+      grid.arc_lengths.push_back(travelled_distance(ego_.speed, a, window_.horizon, ego_.limits.speed_cap));
+    }
+  }
+  roots_.push_back(add_block(grid, 0, grid.row_start.size(), 0, grid.curvatures.size()));
+}
+
+void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
+  if (ego.speed != ego_.speed || !(ego.limits == ego_.limits) || bounding_radius(ego.shape) != ego_radius_ ||
+      window.horizon != window_.horizon || samples_.size() != sample_count_) {
+    throw std::invalid_argument("ego_sweep::restart: the speed, limits, footprint radius, horizon or sample count differ");
+  }
+  start(ego, window);
+}
+
+void ego_sweep::release_caches() {
+  placements_.reset();
+  placement_capacity_ = 0;
+  known_ = {};
+  straight_.reset();
+  straight_known_ = {};
+}
+
+void ego_sweep::start(const ego_state& ego, const collision_window& window) {
+  ego_ = ego;
+  window_ = window;
+  times_ = sample_times(window.duration, window.time_step);
+  start_rotation_ = unit_vector(ego.pose.heading);
+  const double horizon = window.horizon;
+  const double cap = ego.limits.speed_cap;
+  if (!straight_) straight_ = std::make_unique_for_overwrite<straight_part[]>(sample_count_);
+  straight_known_.assign(sample_count_, 0);
+  sample_speed_.clear();
+  sample_point_speed_.clear();
+  sample_speed_.reserve(sample_count_);
+  sample_point_speed_.reserve(sample_count_);
+  for (const maneuver& u : samples_.maneuvers) {
+    const double v = mm::largest_speed(ego, u, horizon);
+    sample_speed_.push_back(v);
+    sample_point_speed_.push_back(mm::largest_point_speed(v, u.curvature, ego_radius_));
+  }
+  const std::size_t placements = times_.size() * sample_count_;
+  known_.assign(placements, 0);
+  if (placement_capacity_ < placements) {
+    placements_ = std::make_unique_for_overwrite<stored[]>(placements);
+    placement_capacity_ = placements;
+  }
+  largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, horizon, cap);
+  largest_point_speed_ = largest_speed_ * (1.0 + max_curvature(ego.speed, ego.limits) * ego_radius_);
+  // Every sample's reference point lies within its arc length of the start, and no sample travels
+  // farther than the one at a_max.
+  reach_radius_.clear();
+  reach_radius_.reserve(times_.size());
+  for (const double t : times_) {
+    double travel = travelled_distance(ego.speed, ego.limits.max_acceleration, std::min(t, horizon), cap);
+    if (t > horizon) travel += largest_speed_ * (t - horizon);
+    reach_radius_.push_back(travel * (1.0 + 1e-12) + 1e-9);
+  }
+  // The nominal-curvature columns' blocks, after the grids' (which depend only on what `restart`
+  // requires to be unchanged).
+  blocks_.resize(grid_blocks_);
+  order_.resize(grid_order_);
+  roots_.resize(grid_roots_);
   grid_view nominal;
   for (const family f : {family::brake, family::accelerate}) {
-    const index_range r = samples.nominal_column(f);
+    const index_range r = samples_.nominal_column(f);
     for (std::size_t m = r.begin; m < r.end; ++m) {
       nominal.row_start.push_back(m);
-      nominal.accelerations.push_back(samples.maneuvers[m].acceleration);
+      nominal.accelerations.push_back(samples_.maneuvers[m].acceleration);
     }
   }
   if (!nominal.row_start.empty()) {
-    nominal.curvatures = {samples.nominal_curvature};
-    grids.push_back(std::move(nominal));
-  }
-  order_.reserve(sample_count_);
-  blocks_.reserve(2 * sample_count_);
-  for (grid_view& g : grids) {
-    g.ascending = std::is_sorted(g.accelerations.begin(), g.accelerations.end()) &&
-                  std::is_sorted(g.curvatures.begin(), g.curvatures.end());
-    if (g.ascending) {
-      for (const double a : g.accelerations) g.arc_lengths.push_back(travelled_distance(ego.speed, a, horizon, cap));
-    }
-    roots_.push_back(add_block(g, 0, g.row_start.size(), 0, g.curvatures.size()));
+    nominal.curvatures = {samples_.nominal_curvature};
+    add_root(nominal);
   }
 }
 

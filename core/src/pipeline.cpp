@@ -364,7 +364,22 @@ class evaluator {
 
 }  // namespace
 
-plan_result run_pipeline(const plan_input& in, const pipeline_options& options) {
+bool planning_cache::holds(const ego_state& ego, double horizon, const sampling_resolution& resolution) const {
+  return valid && speed == ego.speed && limits == ego.limits && radius == bounding_radius(ego.shape) &&
+         horizon_ == horizon && resolution_.accelerations == resolution.accelerations &&
+         resolution_.curvatures == resolution.curvatures;
+}
+
+void planning_cache::keep(const ego_state& ego, double horizon, const sampling_resolution& resolution) {
+  valid = true;
+  speed = ego.speed;
+  limits = ego.limits;
+  radius = bounding_radius(ego.shape);
+  horizon_ = horizon;
+  resolution_ = resolution;
+}
+
+plan_result run_pipeline(const plan_input& in, const pipeline_options& options, planning_cache* cache) {
   if (auto error = validation_error(in)) return invalid(std::move(*error));
   const planner_config& config = in.config;
   const ego_state& ego = in.ego;
@@ -424,8 +439,25 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
   // The fast indices read only the weights of the cells between nodes; the reference counts nodes,
   // and the end points are only drawn (`record_samples`).
   const bool full_samples = options.reference || config.record_samples;
-  const maneuver_samples samples = sample_maneuvers(ego, nominal.curvature, config.displacement_horizon,
-                                                    options.resolution, full_samples, full_samples);
+  // A planner's cache keeps the sampled sets (and the sweep built on them) while the ego's speed,
+  // limits and footprint radius, the horizon and the resolution stay the same; only the
+  // nominal-curvature columns change. Everything is then what sampling anew would give, bit for bit.
+  const bool reuse = cache != nullptr && !full_samples;
+  std::optional<maneuver_samples> fresh;
+  if (reuse) {
+    if (cache->holds(ego, config.displacement_horizon, options.resolution)) {
+      set_nominal_curvature(cache->samples, ego, nominal.curvature, config.displacement_horizon, false);
+    } else {
+      cache->sweep.reset();
+      cache->samples =
+          sample_maneuvers(ego, nominal.curvature, config.displacement_horizon, options.resolution, false, false);
+      cache->keep(ego, config.displacement_horizon, options.resolution);
+    }
+  } else {
+    fresh = sample_maneuvers(ego, nominal.curvature, config.displacement_horizon, options.resolution, full_samples,
+                             full_samples);
+  }
+  const maneuver_samples& samples = reuse ? cache->samples : *fresh;
   evaluator evaluate(samples, options.reference);
 
   // TTC per obstacle (spec §6): obstacle j may be forecast with τ_i ≤ TTC_j (and always τ_0 = 0).
@@ -471,8 +503,25 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options) 
   };
 
   // Clearances per obstacle and forecast time (spec §5).
-  std::optional<ego_sweep> sweep;
-  if (!options.reference && n > 0) sweep.emplace(ego, samples, window);
+  std::optional<ego_sweep> own_sweep;
+  const ego_sweep* sweep = nullptr;
+  // A cached sweep is kept until the vehicle's next step with its blocks, not its megabyte of placements.
+  struct release_on_return {
+    planning_cache* cache;
+    ~release_on_return() {
+      if (cache != nullptr && cache->sweep) cache->sweep->release_caches();
+    }
+  } release{reuse ? cache : nullptr};
+  if (!options.reference && n > 0) {
+    if (!reuse) {
+      sweep = &own_sweep.emplace(ego, samples, window);
+    } else if (cache->sweep) {
+      cache->sweep->restart(ego, window);
+      sweep = &*cache->sweep;
+    } else {
+      sweep = &cache->sweep.emplace(ego, samples, window);
+    }
+  }
   for (std::size_t j = 0; j < n; ++j) {
     if (options.reference) {
       std::vector<clearance_set> sets;

@@ -1,5 +1,9 @@
 #pragma once
 
+#include <optional>
+
+#include "mm/collision_sets.hpp"
+#include "mm/maneuver_samples.hpp"
 #include "mm/planner.hpp"
 
 namespace mm::detail {
@@ -24,7 +28,29 @@ inline constexpr double clearance_cap = 2.0;
 /// passing closer than the largest relative point speed times this is not proven safe (≈ 2–3 cm).
 inline constexpr double verification_resolution = 1e-3;
 
-/// Spec §3–§9 for one planning step.
-plan_result run_pipeline(const plan_input& input, const pipeline_options& options);
+/// What consecutive planning steps of one vehicle share (`mm::planner`): the sampled sets and the
+/// ego sweep built on them, kept while the ego's speed, limits and footprint radius, the horizon
+/// and the resolution stay those of the step that sampled them.
+struct planning_cache {
+  maneuver_samples samples;      ///< without node weights and end points (what the fast path reads)
+  std::optional<ego_sweep> sweep;  ///< on `samples`
+
+  /// True when `samples` were sampled for this speed, limits, footprint radius, horizon and resolution.
+  bool holds(const ego_state& ego, double horizon, const sampling_resolution& resolution) const;
+  /// Records that `samples` were sampled for these.
+  void keep(const ego_state& ego, double horizon, const sampling_resolution& resolution);
+
+ private:
+  bool valid = false;
+  double speed = 0.0;
+  ego_limits limits;
+  double radius = 0.0;
+  double horizon_ = 0.0;
+  sampling_resolution resolution_;
+};
+
+/// Spec §3–§9 for one planning step; with a `cache` (the fast path only), reusing what the
+/// previous step of the same vehicle sampled when that is the same, bit for bit.
+plan_result run_pipeline(const plan_input& input, const pipeline_options& options, planning_cache* cache = nullptr);
 
 }  // namespace mm::detail

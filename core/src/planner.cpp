@@ -15,4 +15,16 @@ plan_result plan(const plan_input& input) {
                                       input.config.assignment_search});
 }
 
+planner::planner() : cache_(std::make_unique<detail::planning_cache>()) {}
+planner::~planner() = default;
+planner::planner(planner&&) noexcept = default;
+planner& planner::operator=(planner&&) noexcept = default;
+
+plan_result planner::plan(const plan_input& input) {
+  if (!cache_) cache_ = std::make_unique<detail::planning_cache>();
+  return detail::run_pipeline(input,
+                              {input.config.resolution, input.config.max_time_step, false, input.config.assignment_search},
+                              cache_.get());
+}
+
 }  // namespace mm

@@ -125,6 +125,7 @@ struct simulation::impl {
     std::vector<detail::observation_ring> tracks;  ///< [target id]
     std::vector<detail::noise_source> noise;       ///< [target id]
     mm::plan_input scratch;                        ///< reused planning input
+    mm::planner planner;                           ///< reuses what its previous step sampled (bit for bit mm::plan)
     metrics_state metrics;
   };
 
@@ -488,12 +489,12 @@ struct simulation::impl {
     record.time = now();
     if (options.measure_cpu_time) {
       const auto start = std::chrono::steady_clock::now();
-      record.result = mm::plan(v.scratch);
+      record.result = v.planner.plan(v.scratch);
       const auto stop = std::chrono::steady_clock::now();
       record.cpu_time_us = std::chrono::duration<double, std::micro>(stop - start).count();
       v.metrics.cpu_us.push_back(record.cpu_time_us);
     } else {
-      record.result = mm::plan(v.scratch);
+      record.result = v.planner.plan(v.scratch);
     }
     if (!record.result.ok()) {
       throw std::logic_error("planning vehicle \"" + infos[id_of(v)].name + "\" at t = " + std::to_string(now()) +

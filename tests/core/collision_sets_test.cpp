@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <stdexcept>
 
 #include "mm/planner.hpp"
 #include "property.hpp"
@@ -192,6 +193,67 @@ TEST(collision_sets, clearance_of_a_forecast_time_covers_the_shared_turning_part
   const std::size_t straight_on = p.samples.grid(family::accelerate).begin + 2;  // a = 0, κ = 0
   EXPECT_LT(c[0][straight_on], 0.0) << "straight-line forecast: B crosses the ego's lane";
   EXPECT_GT(c[3][straight_on], 0.0) << "turning forecast: B turns away before the lane";
+}
+
+TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
+  // Two planning steps of one vehicle at the same speed: a new pose, nominal curvature and window.
+  std::mt19937_64 rng(testing::property_seed() + 11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (std::size_t trial = 0; trial < testing::property_count(20); ++trial) {
+    const plan_input first = testing::random_scene(rng, {1, false});
+    plan_input second = testing::random_scene(rng, {1, false});
+    second.ego.speed = first.ego.speed;
+    second.ego.limits = first.ego.limits;
+    second.ego.shape = first.ego.shape;
+    second.nominal.curvature = (2.0 * unit(rng) - 1.0) * max_curvature(first.ego.speed, first.ego.limits);
+    SCOPED_TRACE(testing::describe(second));
+    maneuver_samples samples = prepare(first, 0.05).samples;
+    ego_sweep restarted(first.ego, samples, {1.0, 3.0, 0.05, 0.0});
+    for (std::size_t m = 0; m < samples.size(); m += 7) restarted.at(m % restarted.times().size(), m);  // fill some caches
+    set_nominal_curvature(samples, second.ego, second.nominal.curvature, second.config.displacement_horizon);
+    const collision_window window{1.0, 2.5, 0.02 + 0.03 * unit(rng), 0.3 * unit(rng)};
+    restarted.restart(second.ego, window);
+    const maneuver_samples fresh_samples = prepare(second, 0.05).samples;
+    ASSERT_EQ(samples.maneuvers, fresh_samples.maneuvers);
+    ASSERT_EQ(samples.area_weights, fresh_samples.area_weights);
+    ASSERT_EQ(samples.end_points, fresh_samples.end_points);
+    const ego_sweep fresh(second.ego, fresh_samples, window);
+    ASSERT_EQ(restarted.times(), fresh.times());
+    ASSERT_EQ(restarted.order(), fresh.order());
+    ASSERT_EQ(restarted.roots(), fresh.roots());
+    ASSERT_EQ(restarted.blocks().size(), fresh.blocks().size());
+    for (std::size_t b = 0; b < fresh.blocks().size(); ++b) {
+      const ego_sweep::block& x = restarted.blocks()[b];
+      const ego_sweep::block& y = fresh.blocks()[b];
+      ASSERT_TRUE(x.begin == y.begin && x.end == y.end && x.centre == y.centre && x.second == y.second &&
+                  x.acceleration_spread == y.acceleration_spread && x.curvature_spread == y.curvature_spread &&
+                  x.top_acceleration == y.top_acceleration && x.largest_deceleration == y.largest_deceleration &&
+                  x.largest_curvature == y.largest_curvature)
+          << "block " << b;
+      for (std::size_t k = 0; k < fresh.times().size(); k += 5) {
+        ASSERT_EQ(restarted.block_spread(x, k), fresh.block_spread(y, k)) << "block " << b << " time " << k;
+      }
+    }
+    ASSERT_EQ(restarted.largest_point_speed(), fresh.largest_point_speed());
+    for (std::size_t k = 0; k < fresh.times().size(); ++k) {
+      ASSERT_EQ(restarted.reach_radius(k), fresh.reach_radius(k));
+      for (std::size_t m = 0; m < fresh_samples.size(); ++m) {
+        const placement a = restarted.at(k, m);
+        const placement b = fresh.at(k, m);
+        ASSERT_TRUE(a.position == b.position && a.direction == b.direction) << "time " << k << " sample " << m;
+        ASSERT_EQ(restarted.sample_point_speed(m), fresh.sample_point_speed(m));
+      }
+    }
+  }
+}
+
+TEST(collision_sets, a_sweep_refuses_to_restart_at_another_speed) {
+  std::mt19937_64 rng(testing::property_seed() + 12);
+  plan_input in = testing::random_scene(rng, {1, false});
+  const maneuver_samples samples = prepare(in, 0.05).samples;
+  ego_sweep sweep(in.ego, samples, {1.0, 3.0, 0.05, 0.0});
+  in.ego.speed += 0.5;
+  EXPECT_THROW(sweep.restart(in.ego, {1.0, 3.0, 0.05, 0.0}), std::invalid_argument);
 }
 
 }  // namespace

@@ -86,6 +86,41 @@ TEST(planner_properties, the_same_input_gives_the_same_result) {
   }
 }
 
+/// The decisions of two results are the same, bit for bit: command, mode, forecast times, family,
+/// selected indices, TTC and what each obstacle was given.
+void expect_same_decision(const plan_result& a, const plan_result& b) {
+  EXPECT_EQ(a.forecast_times, b.forecast_times);
+  EXPECT_EQ(a.command, b.command);
+  EXPECT_EQ(a.mode, b.mode);
+  EXPECT_EQ(a.forecast_index, b.forecast_index);
+  EXPECT_EQ(a.forecast_time, b.forecast_time);
+  EXPECT_EQ(a.selected_family, b.selected_family);
+  EXPECT_EQ(a.mi_brake_selected, b.mi_brake_selected);
+  EXPECT_EQ(a.mi_accelerate_selected, b.mi_accelerate_selected);
+  EXPECT_EQ(a.excluded, b.excluded);
+  EXPECT_EQ(a.time_to_collision, b.time_to_collision);
+  ASSERT_EQ(a.obstacles.size(), b.obstacles.size());
+  for (std::size_t j = 0; j < a.obstacles.size(); ++j) {
+    EXPECT_EQ(a.obstacles[j].relevant, b.obstacles[j].relevant) << "obstacle " << j;
+    EXPECT_EQ(a.obstacles[j].forecast_index, b.obstacles[j].forecast_index) << "obstacle " << j;
+    EXPECT_EQ(a.obstacles[j].time_to_collision, b.obstacles[j].time_to_collision) << "obstacle " << j;
+  }
+}
+
+/// Every field of two results is the same, bit for bit.
+void expect_identical(const plan_result& a, const plan_result& b) {
+  EXPECT_EQ(a.status, b.status);
+  EXPECT_EQ(a.error, b.error);
+  expect_same_decision(a, b);
+  EXPECT_EQ(a.mi_brake, b.mi_brake);
+  EXPECT_EQ(a.mi_accelerate, b.mi_accelerate);
+  EXPECT_EQ(a.collision_time_step, b.collision_time_step);
+  EXPECT_EQ(a.work.bound_checks, b.work.bound_checks);
+  EXPECT_EQ(a.work.distance_evaluations, b.work.distance_evaluations);
+  EXPECT_EQ(a.work.refinements, b.work.refinements);
+  EXPECT_EQ(a.work.assignments_evaluated, b.work.assignments_evaluated);
+}
+
 TEST(planner_properties, planning_without_the_map_column_decides_the_same_bit_for_bit) {
   std::mt19937_64 rng(testing::property_seed() + 7);
   const std::size_t count = testing::property_count(120);
@@ -99,25 +134,34 @@ TEST(planner_properties, planning_without_the_map_column_decides_the_same_bit_fo
     SCOPED_TRACE("failing input:\n" + testing::describe(in));
     ASSERT_TRUE(full.ok() && lean.ok());
     EXPECT_TRUE(lean.mi_brake.empty() && lean.mi_accelerate.empty());
-    EXPECT_EQ(lean.forecast_times, full.forecast_times);
-    EXPECT_EQ(lean.command, full.command);
-    EXPECT_EQ(lean.mode, full.mode);
-    EXPECT_EQ(lean.forecast_index, full.forecast_index);
-    EXPECT_EQ(lean.forecast_time, full.forecast_time);
-    EXPECT_EQ(lean.selected_family, full.selected_family);
-    EXPECT_EQ(lean.mi_brake_selected, full.mi_brake_selected);
-    EXPECT_EQ(lean.mi_accelerate_selected, full.mi_accelerate_selected);
-    EXPECT_EQ(lean.excluded, full.excluded);
-    EXPECT_EQ(lean.time_to_collision, full.time_to_collision);
-    ASSERT_EQ(lean.obstacles.size(), full.obstacles.size());
-    for (std::size_t j = 0; j < full.obstacles.size(); ++j) {
-      EXPECT_EQ(lean.obstacles[j].forecast_index, full.obstacles[j].forecast_index) << "obstacle " << j;
-      EXPECT_EQ(lean.obstacles[j].time_to_collision, full.obstacles[j].time_to_collision) << "obstacle " << j;
-    }
+    expect_same_decision(lean, full);
     // Bound checks also count the walks of values, which can cost more without the column's values to seed them.
     cheaper += lean.work.bound_checks < full.work.bound_checks ? 1 : 0;
   }
   EXPECT_GT(cheaper, count / 10) << "leaving the map out should save work in many scenes, or this test checks little";
+}
+
+TEST(planner_properties, a_planner_that_reuses_its_previous_step_plans_what_plan_plans_bit_for_bit) {
+  // Runs of steps of one vehicle: the speed, limits and footprint held for a few steps with new
+  // poses, nominal maneuvers, obstacles and settings, then changed.
+  std::mt19937_64 rng(testing::property_seed() + 13);
+  const std::size_t count = testing::property_count(120);
+  planner vehicle;
+  plan_input previous;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    plan_input in = random_setting(rng);
+    if (trial % 5 != 0) {
+      in.ego.speed = previous.ego.speed;
+      in.ego.limits = previous.ego.limits;
+      in.ego.shape = previous.ego.shape;
+    }
+    if (trial % 7 == 3) in.config.record_samples = true;
+    if (trial % 11 == 5) in.config.map_column = false;
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    expect_identical(vehicle.plan(in), plan(in));
+    if (::testing::Test::HasFatalFailure()) return;
+    previous = in;
+  }
 }
 
 /// Margin between the best and the second-best forecast time of ADJ.

@@ -68,6 +68,18 @@ class ego_sweep {
  public:
   ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window);
 
+  /// The sweep of a new planning step whose ego differs from this one's only in its pose (the
+  /// speed, limits, footprint radius and horizon equal), whose samples are the same object with
+  /// only the nominal-curvature columns rewritten (`set_nominal_curvature`), and whose window may
+  /// differ in its duration, time step and margin: equal, bit for bit, to a new
+  /// `ego_sweep(ego, samples, window)`, without building the grids' blocks again. Throws
+  /// std::invalid_argument when what must be unchanged changed.
+  void restart(const ego_state& ego, const collision_window& window);
+  /// Frees the caches of placements (about a megabyte at the default resolution) until the next
+  /// `restart`: a sweep kept between planning steps holds only its blocks and speeds. The sweep
+  /// must not be asked for placements before it is restarted.
+  void release_caches();
+
   const ego_state& ego() const { return ego_; }
   const maneuver_samples& samples() const { return samples_; }
   const collision_window& window() const { return window_; }
@@ -139,10 +151,15 @@ class ego_sweep {
 
  private:
   void fill(std::size_t k, std::size_t m) const;
+  /// Everything that depends on the pose, the window or the nominal curvature: the caches, the
+  /// speeds and reaches, the nominal-curvature columns' blocks.
+  void start(const ego_state& ego, const collision_window& window);
   /// Adds the block of grid rows [r0, r1) × columns [c0, c1) and its halves; returns its index.
   /// `sample(r, c)` is the sample index of a node; `accelerations[r]`, `curvatures[c]` its values.
   struct grid_view;
   std::uint32_t add_block(const grid_view& grid, std::size_t r0, std::size_t r1, std::size_t c0, std::size_t c1);
+  /// Adds the tree of blocks of a whole grid.
+  void add_root(grid_view& grid);
 
   /// What the straight part (t > T_h) of sample m needs: `maneuver_local_placement`'s values at T_h.
   struct straight_part {
@@ -171,6 +188,7 @@ class ego_sweep {
   std::vector<double> sample_point_speed_;
   mutable std::vector<std::uint8_t> known_;
   mutable std::unique_ptr<stored[]> placements_;
+  std::size_t placement_capacity_ = 0;  ///< entries allocated in `placements_`
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
   std::vector<double> reach_radius_;
@@ -181,6 +199,9 @@ class ego_sweep {
   std::vector<block> blocks_;
   std::vector<std::uint32_t> roots_;
   std::vector<std::uint32_t> order_;
+  std::size_t grid_blocks_ = 0;  ///< the first blocks, roots and order entries are the grids'
+  std::size_t grid_roots_ = 0;
+  std::size_t grid_order_ = 0;
 };
 
 /// The collision sets of one obstacle for every forecast time, computed only as far as the

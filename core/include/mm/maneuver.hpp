@@ -13,6 +13,7 @@ struct ego_limits {
   double min_turning_radius = 5.5;        ///< R_min [m], geometric
   double speed_cap = 30.0;                ///< v_cap [m/s], hard cap (not the desired speed)
   bool steering = true;                   ///< false: κ_max = 0, the one-dimensional case of spec §10
+  friend constexpr bool operator==(const ego_limits&, const ego_limits&) = default;
 };
 
 /// The ego vehicle as the planner sees it.

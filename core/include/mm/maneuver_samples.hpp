@@ -46,4 +46,10 @@ maneuver_samples sample_maneuvers(const ego_state& ego, double nominal_curvature
                                   const sampling_resolution& resolution, bool node_weights = true,
                                   bool end_points = true);
 
+/// Rewrites the nominal-curvature columns of `samples` (made by `sample_maneuvers` for an ego of
+/// the same speed and limits, and the same horizon) for `nominal_curvature`: the result equals
+/// `sample_maneuvers(ego, nominal_curvature, horizon, ...)` with the same flags, bit for bit.
+void set_nominal_curvature(maneuver_samples& samples, const ego_state& ego, double nominal_curvature, double horizon,
+                           bool end_points = true);
+
 }  // namespace mm

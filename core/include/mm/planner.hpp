@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -88,5 +89,30 @@ std::optional<std::string> validation_error(const plan_input& input);
 /// One planning step with Maneuverability Maps (spec §3–§9): the fast path.
 /// Pure: the same input gives the same result. Thread-safe.
 plan_result plan(const plan_input& input);
+
+namespace detail {
+struct planning_cache;
+}
+
+/// The planner of one vehicle's consecutive steps: `plan(input)` returns exactly what
+/// `mm::plan(input)` returns, bit for bit, and reuses what the previous call sampled when the ego's
+/// speed, limits and footprint radius, the displacement horizon and the resolution are unchanged —
+/// as they are while a vehicle cruises at a steady speed: the sampled displacement sets [AS−], [AS+]
+/// (spec §3, whose cell areas cost a few thousand sines) and the ego's tree of maneuver blocks.
+/// Holds that cache: use one per vehicle, from one thread at a time.
+class planner {
+ public:
+  planner();
+  ~planner();
+  planner(planner&&) noexcept;
+  planner& operator=(planner&&) noexcept;
+  planner(const planner&) = delete;
+  planner& operator=(const planner&) = delete;
+
+  plan_result plan(const plan_input& input);
+
+ private:
+  std::unique_ptr<detail::planning_cache> cache_;
+};
 
 }  // namespace mm
