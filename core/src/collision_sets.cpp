@@ -474,7 +474,9 @@ std::uint32_t clearance_field::until_second_order(std::size_t k, double gap, dou
   // gap + change·Δ − curvature·Δ²/2 > 0 before the positive root.
   constexpr std::uint32_t never = std::numeric_limits<std::uint32_t>::max();
   if (!(gap > 0.0) || !(curvature > 0.0)) return static_cast<std::uint32_t>(k + 1);
-  const double root = (change + std::sqrt(change * change + 2.0 * curvature * gap)) / curvature;
+  // The positive root, in the form without cancellation for either sign of the change.
+  const double discriminant = std::sqrt(change * change + 2.0 * curvature * gap);
+  const double root = change >= 0.0 ? (change + discriminant) / curvature : 2.0 * gap / (discriminant - change);
   const double steps = root * (1.0 - 1e-9) / sweep_.window().time_step;
   if (!(steps < 1e9)) return never;
   return static_cast<std::uint32_t>(std::min<std::size_t>(k + static_cast<std::size_t>(steps) + 1, never));
