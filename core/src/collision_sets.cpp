@@ -290,6 +290,11 @@ ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
                             ego_.limits.speed_cap);
 }
 
+ego_sweep::line ego_sweep::straight_line(std::size_t m) const {
+  const straight_part& part = straight(m);
+  return {ego_.pose.position + rotated(part.local, start_rotation_.x, start_rotation_.y), part.speed * part.direction};
+}
+
 const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
   straight_part& part = straight_[m];
   if (!straight_known_[m]) {
@@ -797,10 +802,21 @@ double clearance_field::floor_of_all(std::size_t m) {
   const std::vector<double>& times = sweep_.times();
   const double step = sweep_.window().time_step;
   const double margin = sweep_.window().margin;
+  const collision_window& window = sweep_.window();
   // The disc's centre moves at v and its radius grows at most at v |ω| T_c.
-  const double rate = centre_rate(m) + turn * sweep_.window().duration;
+  const double rate = centre_rate(m) + turn * window.duration;
+  // Without a turn the disc is a point moving on a line, and after T_h so is the sample's reference
+  // point: there the closest approach has a closed form, and the sample times are walked only up to
+  // the first at or after T_h (every time before it lies within half a step of a walked one).
+  const bool straight = turn == 0.0 && window.duration > window.horizon;
+  std::size_t walked = times.size();
+  if (straight) {
+    walked = 0;
+    while (walked < times.size() && times[walked] < window.horizon) ++walked;
+    walked = std::min(walked + 1, times.size());
+  }
   double low = walk_cap_;
-  for (std::size_t k = 0; k < times.size();) {
+  for (std::size_t k = 0; k < walked;) {
     const double t = times[k];
     const double radius = std::min(0.5 * turn * t * t, 2.0 * motion.speed * t) * (1.0 + 1e-12) + 1e-9;
     ++work_.bound_checks;
@@ -811,6 +827,19 @@ double clearance_field::floor_of_all(std::size_t m) {
   }
   // Between sample times the signed distance falls by at most θ.
   floor = low - sample_threshold(m);
+  if (straight) {
+    // On [T_h, T_c] the reference points' offset is d(t) = d(T_h) + w (t − T_h): its smallest
+    // length is at the clamped vertex, in continuous time (so no θ), less a rounding slack.
+    ++work_.bound_checks;
+    const ego_sweep::line path = sweep_.straight_line(m);
+    const vec2 offset = path.start - (start + (motion.speed * window.horizon) * along);
+    const vec2 relative = path.velocity - motion.speed * along;
+    const double speed_squared = squared_norm(relative);
+    const double span = window.duration - window.horizon;
+    const double s = speed_squared > 0.0 ? std::clamp(-dot(offset, relative) / speed_squared, 0.0, span) : 0.0;
+    const double closest = norm(offset + s * relative) * (1.0 - 1e-12) - 1e-9;
+    floor = std::min(floor, closest - (1e-9 + reach_ + margin));
+  }
   return floor;
 }
 

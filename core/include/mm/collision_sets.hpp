@@ -98,6 +98,12 @@ class ego_sweep {
   /// Placement of sample m at any time t [s]: `maneuver_placement` bit for bit, cheaper on the
   /// straight part.
   placement placement_at(std::size_t m, double t) const;
+  /// The straight part of sample m after T_h: its reference point is `start + (t − T_h) velocity`.
+  struct line {
+    vec2 start;     ///< at T_h, world frame [m]
+    vec2 velocity;  ///< [m/s]
+  };
+  line straight_line(std::size_t m) const;
   /// Largest speed of sample m's reference point over the window [m/s].
   double sample_speed(std::size_t m) const { return sample_speed_[m]; }
   /// Largest speed of any point of the ego footprint executing sample m [m/s]: v_max (1 + |κ| R).
