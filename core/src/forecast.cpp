@@ -54,9 +54,13 @@ motion_estimate estimate_motion(const obstacle_track& track, double history_wind
   std::size_t first = track.history.size() - 2;
   while (first > 0 && track.history[first - 1].time >= last.time - history_window) --first;
 
+  const std::size_t count = track.history.size() - first;
   std::vector<double> times;
   std::vector<double> headings;
   std::vector<double> speeds;
+  times.reserve(count);
+  headings.reserve(count);
+  speeds.reserve(count);
   for (std::size_t i = first; i < track.history.size(); ++i) {
     const observation& o = track.history[i];
     times.push_back(o.time - last.time);
