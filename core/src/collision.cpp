@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <optional>
+#include <vector>
 
 namespace mm {
 namespace {
@@ -40,7 +43,24 @@ double bisected_collision(const ego_state& ego, const maneuver& nominal, const f
   return hit;
 }
 
+/// Sample times after index k that the bounding discs, `squared_distance` [m²] apart in their
+/// centres at t_k, cannot close: the centres approach at most at `rate` [m/s] (lowered by a
+/// rounding slack; the grid's steps are ≤ time_step).
+std::size_t times_apart(double squared_distance, double reach, double rate, std::size_t count,
+                        const collision_window& window) {
+  const double gap = std::sqrt(squared_distance) - reach - 1e-9;
+  if (!(gap > 0.0)) return 0;
+  if (!(rate > 0.0)) return count;
+  const double steps = gap * (1.0 - 1e-9) / (rate * window.time_step);
+  return steps >= static_cast<double>(count) ? count : static_cast<std::size_t>(steps);
+}
+
 }  // namespace
+
+double largest_speed(const ego_state& ego, const maneuver& u, double horizon) {
+  const double cap = ego.limits.speed_cap;
+  return std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
+}
 
 std::vector<double> sample_times(double duration, double step) {
   const auto steps = static_cast<std::size_t>(std::ceil(duration / step - 1e-9));
@@ -59,9 +79,94 @@ double tunneling_time_step(const ego_state& ego, const forecast_obstacle& obstac
   return dimension / relative_speed;
 }
 
+namespace {
+
+/// What `first_collision_time` needs of one obstacle at every sample time: its forecast pose,
+/// placed on first use and kept for every maneuver.
+struct forecast_track {
+  const forecast_obstacle* obstacle;
+  double forecast_time;
+  double reach;  ///< bounding radii of ego and obstacle plus the margin [m]
+  std::vector<pose> poses;
+  std::vector<std::uint8_t> known;
+  const pose& at(std::size_t k, double t) {
+    if (!known[k]) {
+      poses[k] = forecast_pose(obstacle->motion, forecast_time, t);
+      known[k] = 1;
+    }
+    return poses[k];
+  }
+};
+
+std::vector<forecast_track> forecast_tracks(const ego_state& ego, std::span<const forecast_obstacle> obstacles,
+                                            std::span<const double> forecast_times, const collision_window& window,
+                                            std::size_t count) {
+  std::vector<forecast_track> tracks;
+  const double ego_radius = bounding_radius(ego.shape);
+  for (std::size_t j = 0; j < obstacles.size(); ++j) {
+    tracks.push_back({&obstacles[j], forecast_times[j], ego_radius + bounding_radius(obstacles[j].shape) + window.margin,
+                      std::vector<pose>(count), std::vector<std::uint8_t>(count, 0)});
+  }
+  return tracks;
+}
+
+/// `first_collision_time` of `u` against `tracks` on the sample times `times`; `next` is scratch.
+double first_collision_on(const ego_state& ego, const maneuver& u, std::span<forecast_track> tracks,
+                          std::span<const double> times, const collision_window& window,
+                          std::vector<std::size_t>& next) {
+  const double ego_speed = largest_speed(ego, u, window.horizon);
+  // next[j]: the first time index at which obstacle j can overlap.
+  next.assign(tracks.size(), 0);
+  for (std::size_t k = 0; k < times.size();) {
+    std::size_t after = times.size();
+    std::optional<pose> ego_pose;
+    for (std::size_t j = 0; j < tracks.size(); ++j) {
+      if (next[j] == k) {
+        forecast_track& track = tracks[j];
+        if (!ego_pose) ego_pose = maneuver_pose(ego.pose, ego.speed, u, times[k], window.horizon, ego.limits.speed_cap);
+        const pose& obstacle_pose = track.at(k, times[k]);
+        // `check_overlap`'s test: the bounding discs first.
+        const double squared = squared_norm(ego_pose->position - obstacle_pose.position);
+        if (squared < track.reach * track.reach &&
+            overlaps(place(ego.shape, *ego_pose), place(track.obstacle->shape, obstacle_pose), window.margin)) {
+          return times[k];
+        }
+        const double rate = ego_speed + std::abs(track.obstacle->motion.speed);
+        next[j] = k + times_apart(squared, track.reach, rate, times.size(), window) + 1;
+      }
+      after = std::min(after, next[j]);
+    }
+    k = after;
+  }
+  return no_collision;
+}
+
+}  // namespace
+
 double first_collision_time(const ego_state& ego, const maneuver& u,
                             std::span<const forecast_obstacle> obstacles,
                             std::span<const double> forecast_times, const collision_window& window) {
+  const std::vector<double> times = sample_times(window.duration, window.time_step);
+  std::vector<forecast_track> tracks = forecast_tracks(ego, obstacles, forecast_times, window, times.size());
+  std::vector<std::size_t> next;
+  return first_collision_on(ego, u, tracks, times, window, next);
+}
+
+std::vector<double> first_collision_times(const ego_state& ego, std::span<const maneuver> maneuvers,
+                                          std::span<const forecast_obstacle> obstacles,
+                                          std::span<const double> forecast_times, const collision_window& window) {
+  const std::vector<double> times = sample_times(window.duration, window.time_step);
+  std::vector<forecast_track> tracks = forecast_tracks(ego, obstacles, forecast_times, window, times.size());
+  std::vector<std::size_t> next;
+  std::vector<double> first;
+  first.reserve(maneuvers.size());
+  for (const maneuver& u : maneuvers) first.push_back(first_collision_on(ego, u, tracks, times, window, next));
+  return first;
+}
+
+double first_collision_time_reference(const ego_state& ego, const maneuver& u,
+                                      std::span<const forecast_obstacle> obstacles,
+                                      std::span<const double> forecast_times, const collision_window& window) {
   for (const double t : sample_times(window.duration, window.time_step)) {
     for (std::size_t j = 0; j < obstacles.size(); ++j) {
       if (overlaps_at(ego, u, obstacles[j], forecast_times[j], t, window)) return t;
@@ -80,9 +185,8 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
                              std::span<const double> forecast_times, const collision_window& window,
                              double resolution) {
   // Largest speed of the ego's reference point along u, and of any of its footprint points.
-  const double top_speed = std::max(std::min(ego.speed, ego.limits.speed_cap),
-                                    speed_after(ego.speed, u.acceleration, window.horizon, ego.limits.speed_cap));
-  const double ego_rate = top_speed * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
+  const double ego_rate =
+      largest_speed(ego, u, window.horizon) * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
   double t = 0.0;
   while (true) {
     const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
@@ -105,13 +209,10 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
 double time_to_collision(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
                          const collision_window& window) {
   const std::vector<double> times = sample_times(window.duration, window.time_step);
-  const double cap = ego.limits.speed_cap;
   const double reach = bounding_radius(ego.shape) + bounding_radius(obstacle.shape) + window.margin;
   // The reference points' distance changes no faster than the sum of their largest speeds, so from
   // a time at which the bounding discs are apart by `gap` none can overlap for gap / rate.
-  const double rate = std::max(std::clamp(ego.speed, 0.0, cap),
-                               speed_after(ego.speed, nominal.acceleration, window.horizon, cap)) +
-                      std::abs(obstacle.motion.speed);
+  const double rate = largest_speed(ego, nominal, window.horizon) + std::abs(obstacle.motion.speed);
   for (std::size_t k = 0; k < times.size();) {
     const double t = times[k];
     const overlap_check at = check_overlap(ego, nominal, obstacle, window.duration, t, window);
@@ -119,16 +220,7 @@ double time_to_collision(const ego_state& ego, const maneuver& nominal, const fo
       if (t == 0.0) return 0.0;
       return bisected_collision(ego, nominal, obstacle, window, times[k - 1], t);
     }
-    // Skipped times are provably apart (lowered by a rounding slack); the grid's steps are ≤ time_step.
-    const double gap = std::sqrt(at.squared_distance) - reach - 1e-9;
-    std::size_t skip = 0;
-    if (gap > 0.0 && rate > 0.0) {
-      const double steps = gap * (1.0 - 1e-9) / (rate * window.time_step);
-      skip = steps >= static_cast<double>(times.size()) ? times.size() : static_cast<std::size_t>(steps);
-    } else if (gap > 0.0) {
-      skip = times.size();
-    }
-    k += skip + 1;
+    k += times_apart(at.squared_distance, reach, rate, times.size(), window) + 1;
   }
   return no_collision;
 }

@@ -317,11 +317,6 @@ void ego_sweep::fill(std::size_t k, std::size_t m) const {
   known_[index] = 1;
 }
 
-double largest_speed(const ego_state& ego, const maneuver& u, double horizon) {
-  const double cap = ego.limits.speed_cap;
-  return std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
-}
-
 double largest_point_speed(double largest_speed, double curvature, double radius) {
   return largest_speed * (1.0 + std::abs(curvature) * radius);
 }

@@ -640,10 +640,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     result.command = decision->command;
     result.mode = decision->mode;
   } else {
-    std::vector<double> first_collision(samples.size());
-    for (std::size_t m = 0; m < samples.size(); ++m) {
-      first_collision[m] = first_collision_time(ego, samples.maneuvers[m], relevant, assigned_tau, window);
-    }
+    const std::vector<double> first_collision =
+        first_collision_times(ego, samples.maneuvers, relevant, assigned_tau, window);
     const maneuver_decision last_resort = near_crash_maneuver(samples, first_collision, nominal.curvature);
     result.command = last_resort.command;
     result.mode = last_resort.mode;

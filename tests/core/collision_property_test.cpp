@@ -37,5 +37,40 @@ TEST(collision, time_to_collision_equals_its_reference_bit_for_bit_on_random_sce
   EXPECT_GT(collisions, count / 4) << "the random scenes must collide often for this test to mean anything";
 }
 
+TEST(collision, first_collision_time_equals_its_reference_bit_for_bit_on_random_scenes) {
+  // Every obstacle of a random scene at once, each with its own forecast time, random maneuvers.
+  std::mt19937_64 rng(testing::property_seed() + 31);
+  const std::size_t count = testing::property_count(200);
+  std::uniform_real_distribution<double> acceleration(-7.0, 3.0);
+  std::uniform_real_distribution<double> curvature(-0.15, 0.15);
+  std::uniform_int_distribution<int> forecast(0, 16);
+  std::size_t collisions = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = testing::random_scene(rng, {1 + trial % 3, trial % 2 == 1});
+    const collision_window window{in.config.displacement_horizon, in.config.collision_window,
+                                  trial % 5 == 0 ? 0.02 : 0.05, trial % 3 == 1 ? 0.4 : 0.0};
+    std::vector<forecast_obstacle> obstacles;
+    std::vector<double> taus;
+    for (const obstacle_track& track : in.obstacles) {
+      obstacles.push_back({estimate_motion(track, in.config.history_window, in.time), track.shape});
+      taus.push_back(0.125 * forecast(rng));
+    }
+    std::vector<maneuver> maneuvers;
+    for (int m = 0; m < 8; ++m) maneuvers.push_back({m % 3 == 0 ? 0.0 : acceleration(rng), m % 4 == 0 ? 0.0 : curvature(rng)});
+    const std::vector<double> all = first_collision_times(in.ego, maneuvers, obstacles, taus, window);
+    ASSERT_EQ(all.size(), maneuvers.size());
+    for (std::size_t m = 0; m < maneuvers.size(); ++m) {
+      const maneuver& u = maneuvers[m];
+      const double fast = first_collision_time(in.ego, u, obstacles, taus, window);
+      const double reference = first_collision_time_reference(in.ego, u, obstacles, taus, window);
+      ASSERT_EQ(fast, reference) << "trial " << trial << " maneuver (" << u.acceleration << ", " << u.curvature
+                                 << ")\n" << testing::describe(in);
+      ASSERT_EQ(all[m], reference) << "trial " << trial << " maneuver " << m << " of the batch";
+      collisions += reference != no_collision ? 1 : 0;
+    }
+  }
+  EXPECT_GT(collisions, count) << "the random maneuvers must collide often for this test to mean anything";
+}
+
 }  // namespace
 }  // namespace mm

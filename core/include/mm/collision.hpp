@@ -28,6 +28,10 @@ struct collision_window {
 
 inline constexpr double no_collision = std::numeric_limits<double>::infinity();
 
+/// Largest speed [m/s] of the ego's reference point executing `u` over the window: v_max, the larger
+/// of the start speed and the speed at T_h (the speed is monotonic in t, then constant).
+double largest_speed(const ego_state& ego, const maneuver& u, double horizon);
+
 /// The sample times k·step, k = 0..K, of [0, duration], the last one equal to `duration`.
 std::vector<double> sample_times(double duration, double step);
 
@@ -38,9 +42,23 @@ double tunneling_time_step(const ego_state& ego, const forecast_obstacle& obstac
 
 /// The first sample time at which the ego executing `u` overlaps one of `obstacles`, obstacle j
 /// following its forecast with forecast time `forecast_times[j]`; `no_collision` if none (spec §5).
+/// Sample times at which an obstacle cannot overlap yet (bounding discs apart by more than the
+/// largest speeds close in the time between) are not looked at for it: equal to
+/// `first_collision_time_reference`, bit for bit.
 double first_collision_time(const ego_state& ego, const maneuver& u,
                             std::span<const forecast_obstacle> obstacles,
                             std::span<const double> forecast_times, const collision_window& window);
+
+/// `first_collision_time` of every maneuver of `maneuvers`, bit for bit, with each obstacle's
+/// forecast placed once per sample time for all of them.
+std::vector<double> first_collision_times(const ego_state& ego, std::span<const maneuver> maneuvers,
+                                          std::span<const forecast_obstacle> obstacles,
+                                          std::span<const double> forecast_times, const collision_window& window);
+
+/// The reference for `first_collision_time`: every obstacle at every sample time.
+double first_collision_time_reference(const ego_state& ego, const maneuver& u,
+                                      std::span<const forecast_obstacle> obstacles,
+                                      std::span<const double> forecast_times, const collision_window& window);
 
 /// True when `first_collision_time` is finite: the maneuver collides [CSS].
 bool maneuver_collides(const ego_state& ego, const maneuver& u,

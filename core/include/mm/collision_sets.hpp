@@ -32,10 +32,6 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
 /// (docs/method.md §4.4).
 using clearance_set = std::vector<double>;
 
-/// Largest speed [m/s] of the ego's reference point executing `u` over the window: v_max, the larger
-/// of the start speed and the speed at T_h (the speed is monotonic in t, then constant).
-double largest_speed(const ego_state& ego, const maneuver& u, double horizon);
-
 /// Largest speed [m/s] of any point of the ego footprint executing `u` over the window:
 /// v_max (1 + |κ| R).
 double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon);
