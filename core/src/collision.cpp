@@ -16,15 +16,21 @@ struct overlap_check {
   double squared_distance;
 };
 
+/// The test of the placed footprints; `reach` [m] is the sum of their bounding radii and the margin.
+overlap_check check_overlap(const footprint& ego_shape, const pose& ego_pose, const footprint& obstacle_shape,
+                            const pose& obstacle_pose, double reach, double margin) {
+  // Footprints lie within their bounding discs: apart when the discs are.
+  const double squared = squared_norm(ego_pose.position - obstacle_pose.position);
+  if (squared >= reach * reach) return {false, squared};
+  return {overlaps(place(ego_shape, ego_pose), place(obstacle_shape, obstacle_pose), margin), squared};
+}
+
 overlap_check check_overlap(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle,
                             double forecast_time, double t, const collision_window& window) {
   const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
   const pose obstacle_pose = forecast_pose(obstacle.motion, forecast_time, t);
-  // Footprints lie within their bounding discs: apart when the discs are.
   const double reach = bounding_radius(ego.shape) + bounding_radius(obstacle.shape) + window.margin;
-  const double squared = squared_norm(ego_pose.position - obstacle_pose.position);
-  if (squared >= reach * reach) return {false, squared};
-  return {overlaps(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose), window.margin), squared};
+  return check_overlap(ego.shape, ego_pose, obstacle.shape, obstacle_pose, reach, window.margin);
 }
 
 bool overlaps_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle,
@@ -124,15 +130,11 @@ double first_collision_on(const ego_state& ego, const maneuver& u, std::span<for
       if (next[j] == k) {
         forecast_track& track = tracks[j];
         if (!ego_pose) ego_pose = maneuver_pose(ego.pose, ego.speed, u, times[k], window.horizon, ego.limits.speed_cap);
-        const pose& obstacle_pose = track.at(k, times[k]);
-        // `check_overlap`'s test: the bounding discs first.
-        const double squared = squared_norm(ego_pose->position - obstacle_pose.position);
-        if (squared < track.reach * track.reach &&
-            overlaps(place(ego.shape, *ego_pose), place(track.obstacle->shape, obstacle_pose), window.margin)) {
-          return times[k];
-        }
+        const overlap_check at = check_overlap(ego.shape, *ego_pose, track.obstacle->shape, track.at(k, times[k]),
+                                               track.reach, window.margin);
+        if (at.overlaps) return times[k];
         const double rate = ego_speed + std::abs(track.obstacle->motion.speed);
-        next[j] = k + times_apart(squared, track.reach, rate, times.size(), window) + 1;
+        next[j] = k + times_apart(at.squared_distance, track.reach, rate, times.size(), window) + 1;
       }
       after = std::min(after, next[j]);
     }

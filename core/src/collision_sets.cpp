@@ -795,9 +795,9 @@ double clearance_field::floor_of_all(std::size_t m) {
   const vec2 along = heading_direction_;
   const double turn = motion.speed * std::abs(motion.yaw_rate);
   const std::vector<double>& times = sweep_.times();
-  const double step = sweep_.window().time_step;
-  const double margin = sweep_.window().margin;
   const collision_window& window = sweep_.window();
+  const double step = window.time_step;
+  const double margin = window.margin;
   // The disc's centre moves at v and its radius grows at most at v |ω| T_c.
   const double rate = centre_rate(m) + turn * window.duration;
   // Without a turn the disc is a point moving on a line, and after T_h so is the sample's reference

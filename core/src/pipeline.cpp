@@ -567,7 +567,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     }
   }
   if (whole_column) {
-    result.mi_brake = mi_brake;
+    result.mi_brake = mi_brake;  // copies: ADJ below still reads them
     result.mi_accelerate = mi_accelerate;
   }
 
