@@ -103,13 +103,16 @@ void table1_cell(benchmark::State& state) {
 }
 
 /// The many-agent scenario (s6-busy-roundabout: 50 planning vehicles) for its first
-/// `state.range(1)` simulated seconds with `state.range(0)` planning threads; reports the
-/// real-time factor (simulated time over wall time) at its 100 Hz step.
+/// `state.range(1)` simulated seconds with `state.range(0)` planning threads, recording every
+/// vehicle's Maneuverability Map when `state.range(2)` is 1 (what `maneuvermap run` writes) or
+/// only the decisions when 0 (`run_options::map_columns`, what a sweep's runs do: the same run,
+/// bit for bit); reports the real-time factor (simulated time over wall time) at its 100 Hz step.
 void busy_roundabout(benchmark::State& state) {
   mm::scenario_file::loaded_scenario loaded = mm::scenario_file::load("s6-busy-roundabout");
   loaded.scenario.duration = static_cast<double>(state.range(1));
   mm::sim::run_options options;
   options.jobs = static_cast<std::size_t>(state.range(0));
+  options.map_columns = state.range(2) != 0;
   double simulated = 0.0;
   double wall = 0.0;
   for (auto _ : state) {
@@ -155,9 +158,11 @@ void register_all() {
       ->Unit(benchmark::kMillisecond)
       ->Iterations(1);
   benchmark::RegisterBenchmark("sim/busy_roundabout", busy_roundabout)
-      ->ArgNames({"jobs", "seconds"})
-      ->Args({1, 4})
-      ->Args({2, 4})
+      ->ArgNames({"jobs", "seconds", "maps"})
+      ->Args({1, 4, 1})
+      ->Args({2, 4, 1})
+      ->Args({1, 4, 0})
+      ->Args({2, 4, 0})
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->Iterations(1);

@@ -397,6 +397,9 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   independent_ = motion.yaw_rate == 0.0;
   const double last_tau = count == 0 ? 0.0 : taus_.back();
   heading_direction_ = unit_vector(motion.pose.heading);
+  turning_.reserve(times.size());
+  turn_end_.reserve(count);
+  first_straight_.reserve(count);
   for (std::size_t k = 0; k < times.size() && (independent_ || times[k] <= last_tau); ++k) {
     turning_.push_back(independent_ ? straight_forecast(times[k]) : as_placement(forecast_pose(motion, times[k], times[k])));
   }

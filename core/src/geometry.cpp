@@ -3,6 +3,8 @@
 namespace mm {
 
 double wrap_angle(double angle) {
+  // Already in (−π, π]: std::remainder would return it unchanged (the quotient rounds to 0, ties to even).
+  if (angle > -std::numbers::pi && angle <= std::numbers::pi) return angle;
   constexpr double two_pi = 2.0 * std::numbers::pi;
   double wrapped = std::remainder(angle, two_pi);
   if (wrapped <= -std::numbers::pi) wrapped += two_pi;

@@ -58,15 +58,23 @@ void observation_ring::push(const observation& o) {
 
 const observation& observation_ring::back() const { return buffer_[(head_ + size_ - 1) % buffer_.size()]; }
 
+std::array<std::span<const observation>, 2> observation_ring::segments() const {
+  // The ring's entries oldest first: from the head to the end of the buffer, then from its start.
+  const std::size_t first = std::min(size_, buffer_.size() - head_);
+  return {std::span(buffer_).subspan(head_, first), std::span(buffer_).first(size_ - first)};
+}
+
 void observation_ring::copy_to(std::vector<observation>& out) const {
   out.clear();
   out.reserve(size_);
-  for (std::size_t i = 0; i < size_; ++i) out.push_back(buffer_[(head_ + i) % buffer_.size()]);
+  for (const std::span<const observation> part : segments()) out.insert(out.end(), part.begin(), part.end());
 }
 
 double observation_ring::max_speed() const {
   double fastest = 0.0;
-  for (std::size_t i = 0; i < size_; ++i) fastest = std::max(fastest, buffer_[(head_ + i) % buffer_.size()].speed);
+  for (const std::span<const observation> part : segments()) {
+    for (const observation& o : part) fastest = std::max(fastest, o.speed);
+  }
   return fastest;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -49,6 +51,8 @@ class observation_ring {
   double max_speed() const;
 
  private:
+  /// The entries oldest first, as the two contiguous parts of the buffer (the second may be empty).
+  std::array<std::span<const observation>, 2> segments() const;
   std::size_t capacity_;
   std::vector<observation> buffer_;
   std::size_t head_ = 0;  ///< index of the oldest

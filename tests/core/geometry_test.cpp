@@ -2,7 +2,13 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numbers>
+#include <random>
+#include <vector>
 
 namespace mm {
 namespace {
@@ -16,6 +22,27 @@ TEST(geometry, wrap_angle_maps_into_the_half_open_interval_minus_pi_to_pi) {
   EXPECT_DOUBLE_EQ(wrap_angle(-pi), pi);
   EXPECT_NEAR(wrap_angle(6.28), 6.28 - 2.0 * pi, 1e-12);
   EXPECT_NEAR(wrap_angle(101.0 * pi + 0.25), -pi + 0.25, 1e-9);
+}
+
+/// The reference of `wrap_angle`: the remainder of 2π, with −π moved to π.
+double wrap_angle_reference(double angle) {
+  double wrapped = std::remainder(angle, 2.0 * pi);
+  if (wrapped <= -pi) wrapped += 2.0 * pi;
+  return wrapped;
+}
+
+TEST(geometry, wrap_angle_equals_its_reference_bit_for_bit) {
+  std::vector<double> angles{0.0, -0.0, pi, -pi, std::nextafter(pi, 4.0), std::nextafter(pi, 0.0),
+                             std::nextafter(-pi, 0.0), std::nextafter(-pi, -4.0), 2.0 * pi, -2.0 * pi,
+                             3.0 * pi, -3.0 * pi, 1e-300, -1e-300, 1e6, -1e6};
+  std::mt19937_64 random(20261202);
+  std::uniform_real_distribution<double> near(-4.0 * pi, 4.0 * pi);
+  for (int n = 0; n < 100000; ++n) angles.push_back(near(random));
+  for (const double a : angles) {
+    EXPECT_EQ(std::bit_cast<std::uint64_t>(wrap_angle(a)), std::bit_cast<std::uint64_t>(wrap_angle_reference(a)))
+        << "angle " << a;
+  }
+  EXPECT_TRUE(std::isnan(wrap_angle(std::numeric_limits<double>::quiet_NaN())));
 }
 
 TEST(geometry, sinc_and_versine_ratio_are_continuous_through_zero) {
