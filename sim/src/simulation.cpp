@@ -6,11 +6,13 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <thread>
 #include <utility>
 
 #include "sensing.hpp"
+#include "worker_pool.hpp"
 
 namespace mm::sim {
 namespace {
@@ -136,6 +138,7 @@ struct simulation::impl {
   std::vector<double> radii;                       ///< bounding radius of each footprint [m]
   std::vector<const scripted_motion*> motions;     ///< per id; null for planning vehicles and statics
   std::vector<vehicle> vehicles;                   ///< ids 0..P−1
+  std::unique_ptr<detail::worker_pool> pool;       ///< the helper threads of `decide` (jobs > 1), kept for the run
   std::vector<crash_event> crash_log;
   std::size_t step = 0;
   std::size_t last_step = 0;
@@ -455,11 +458,8 @@ struct simulation::impl {
         }
       }
     };
-    {
-      std::vector<std::jthread> helpers;
-      for (std::size_t t = 1; t < jobs; ++t) helpers.emplace_back(work);
-      work();
-    }
+    if (!pool || pool->helpers() != jobs - 1) pool = std::make_unique<detail::worker_pool>(jobs - 1);
+    pool->run(work);
     // The first failure in id order, whatever the threads' timing.
     for (const std::exception_ptr& error : errors) {
       if (error) std::rethrow_exception(error);
