@@ -121,6 +121,7 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window) {
     sample_speed_.push_back(v);
     sample_point_speed_.push_back(mm::largest_point_speed(v, u.curvature, ego_radius_));
   }
+  time_count_ = times_.size();
   const std::size_t placements = times_.size() * sample_count_;
   known_.assign(placements, 0);
   if (placement_capacity_ < placements) {
@@ -312,7 +313,7 @@ const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {
   const placement p = placement_at(m, times_[k]);
-  const std::size_t index = k * sample_count_ + m;
+  const std::size_t index = placement_index(k, m);
   placements_[index] = {p.position.x, p.position.y, p.direction.x, p.direction.y};
   known_[index] = 1;
 }

@@ -86,7 +86,7 @@ class ego_sweep {
   using placement = mm::placement;
   /// Placement of sample m at time index k.
   placement at(std::size_t k, std::size_t m) const {
-    const std::size_t index = k * sample_count_ + m;
+    const std::size_t index = placement_index(k, m);
     if (!known_[index]) fill(k, m);
     const stored& p = placements_[index];
     return {{p.px, p.py}, {p.dx, p.dy}};
@@ -153,6 +153,10 @@ class ego_sweep {
 
  private:
   void fill(std::size_t k, std::size_t m) const;
+  /// Where the placement of sample m at time index k is cached: sample by sample, so that the
+  /// walks of one sample over the window (exact values, floors) and a block's centre looked at on
+  /// consecutive times read neighbouring memory.
+  std::size_t placement_index(std::size_t k, std::size_t m) const { return m * time_count_ + k; }
   /// Everything that depends on the pose, the window or the nominal curvature: the caches, the
   /// speeds and reaches, the nominal-curvature columns' blocks.
   void start(const ego_state& ego, const collision_window& window);
@@ -191,6 +195,7 @@ class ego_sweep {
   mutable std::vector<std::uint8_t> known_;
   mutable std::unique_ptr<stored[]> placements_;
   std::size_t placement_capacity_ = 0;  ///< entries allocated in `placements_`
+  std::size_t time_count_ = 0;          ///< `times_.size()`
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
   std::vector<double> reach_radius_;
