@@ -73,7 +73,7 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
   grid_blocks_ = blocks_.size();
   grid_order_ = order_.size();
   grid_roots_ = roots_.size();
-  start(ego, window);
+  start(ego, window, false);
 }
 
 void ego_sweep::add_root(grid_view& grid) {
@@ -92,7 +92,7 @@ void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
       window.horizon != window_.horizon || samples_.size() != sample_count_) {
     throw std::invalid_argument("ego_sweep::restart: the speed, limits, footprint radius, horizon or sample count differ");
   }
-  start(ego, window);
+  start(ego, window, true);
 }
 
 void ego_sweep::release_caches() {
@@ -103,7 +103,7 @@ void ego_sweep::release_caches() {
   straight_known_ = {};
 }
 
-void ego_sweep::start(const ego_state& ego, const collision_window& window) {
+void ego_sweep::start(const ego_state& ego, const collision_window& window, bool restarting) {
   ego_ = ego;
   window_ = window;
   times_ = sample_times(window.duration, window.time_step);
@@ -112,11 +112,14 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window) {
   const double cap = ego.limits.speed_cap;
   if (!straight_) straight_ = std::make_unique_for_overwrite<straight_part[]>(sample_count_);
   straight_known_.assign(sample_count_, 0);
-  sample_speed_.clear();
-  sample_point_speed_.clear();
+  // The grids' samples come first and do not change on a restart; the nominal-curvature columns follow.
+  const std::size_t kept = restarting ? samples_.brake.samples.size() + samples_.accelerate.samples.size() : 0;
+  sample_speed_.resize(kept);
+  sample_point_speed_.resize(kept);
   sample_speed_.reserve(sample_count_);
   sample_point_speed_.reserve(sample_count_);
-  for (const maneuver& u : samples_.maneuvers) {
+  for (std::size_t m = kept; m < sample_count_; ++m) {
+    const maneuver& u = samples_.maneuvers[m];
     const double v = mm::largest_speed(ego, u, horizon);
     sample_speed_.push_back(v);
     sample_point_speed_.push_back(mm::largest_point_speed(v, u.curvature, ego_radius_));

@@ -46,14 +46,28 @@ void noise_source::standard_normals(std::uint64_t step, double (&out)[4]) const 
 }
 
 void observation_ring::push(const observation& o) {
-  if (buffer_.empty()) buffer_.resize(capacity_);
-  if (size_ < buffer_.size()) {
-    buffer_[(head_ + size_) % buffer_.size()] = o;
+  if (buffer_.empty()) {
+    buffer_.resize(capacity_);
+    maxima_.resize(capacity_);
+  }
+  const std::size_t slots = buffer_.size();
+  if (size_ < slots) {
+    buffer_[(head_ + size_) % slots] = o;
     ++size_;
   } else {
+    // The oldest entry leaves the window: so does its candidate for the maximum, if it is one.
+    if (maxima_size_ > 0 && maxima_[maxima_head_].second == pushed_ - size_) {
+      maxima_head_ = maxima_head_ + 1 == slots ? 0 : maxima_head_ + 1;
+      --maxima_size_;
+    }
     buffer_[head_] = o;
-    head_ = (head_ + 1) % buffer_.size();
+    head_ = (head_ + 1) % slots;
   }
+  // Entries no faster than the new one can no longer be the maximum of any later window.
+  while (maxima_size_ > 0 && maxima_[(maxima_head_ + maxima_size_ - 1) % slots].first <= o.speed) --maxima_size_;
+  maxima_[(maxima_head_ + maxima_size_) % slots] = {o.speed, pushed_};
+  ++maxima_size_;
+  ++pushed_;
 }
 
 const observation& observation_ring::back() const { return buffer_[(head_ + size_ - 1) % buffer_.size()]; }
@@ -71,6 +85,10 @@ void observation_ring::copy_to(std::vector<observation>& out) const {
 }
 
 double observation_ring::max_speed() const {
+  return maxima_size_ == 0 ? 0.0 : std::max(0.0, maxima_[maxima_head_].first);
+}
+
+double observation_ring::max_speed_by_scan() const {
   double fastest = 0.0;
   for (const std::span<const observation> part : segments()) {
     for (const observation& o : part) fastest = std::max(fastest, o.speed);

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <span>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "mm/forecast.hpp"
@@ -41,14 +42,17 @@ class observation_ring {
   void clear() {
     size_ = 0;
     head_ = 0;
+    maxima_size_ = 0;
   }
   std::size_t size() const { return size_; }
   bool empty() const { return size_ == 0; }
   const observation& back() const;
   /// Oldest first.
   void copy_to(std::vector<observation>& out) const;
-  /// Largest observed speed in the ring [m/s].
+  /// Largest observed speed in the ring and 0 [m/s]: max(0, speeds), in O(1).
   double max_speed() const;
+  /// The same by a scan of the ring (the reference of `max_speed`).
+  double max_speed_by_scan() const;
 
  private:
   /// The entries oldest first, as the two contiguous parts of the buffer (the second may be empty).
@@ -57,6 +61,13 @@ class observation_ring {
   std::vector<observation> buffer_;
   std::size_t head_ = 0;  ///< index of the oldest
   std::size_t size_ = 0;
+  /// The sliding window's maximum: (speed, push number) of the entries that no later entry is at
+  /// least as fast as, oldest first, so decreasing; the first is the largest speed in the ring. A
+  /// ring of `capacity_` slots (`maxima_head_`: the first).
+  std::vector<std::pair<double, std::uint64_t>> maxima_;
+  std::size_t maxima_head_ = 0;
+  std::size_t maxima_size_ = 0;
+  std::uint64_t pushed_ = 0;  ///< pushes so far: the oldest entry is push number pushed_ − size_
 };
 
 }  // namespace mm::sim::detail

@@ -272,7 +272,8 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
         const placement a = restarted.at(k, m);
         const placement b = fresh.at(k, m);
         ASSERT_TRUE(a.position == b.position && a.direction == b.direction) << "time " << k << " sample " << m;
-        ASSERT_EQ(restarted.sample_point_speed(m), fresh.sample_point_speed(m));
+        ASSERT_EQ(restarted.sample_speed(m), fresh.sample_speed(m)) << "sample " << m;
+        ASSERT_EQ(restarted.sample_point_speed(m), fresh.sample_point_speed(m)) << "sample " << m;
       }
     }
   }

@@ -3,9 +3,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 #include <vector>
 
 #include "mm/sim/simulation.hpp"
+#include "sensing.hpp"
 #include "sim/scenarios.hpp"
 
 namespace {
@@ -79,6 +81,34 @@ TEST(sim_sensing, observation_noise_is_gaussian_with_the_requested_standard_devi
   double lag = 0.0;
   for (std::size_t i = 1; i < dx.size(); ++i) lag += (dx[i] - mx.mean) * (dx[i - 1] - mx.mean);
   EXPECT_LT(std::abs(lag / (n * mx.sd * mx.sd)), 4.0 / std::sqrt(n));  // white in time
+}
+
+TEST(sim_sensing, the_ring_keeps_its_largest_speed_as_a_scan_finds_it) {
+  // Rings of several capacities fed runs of rising, falling, equal and negative (noisy) speeds;
+  // after every push the O(1) maximum equals the scan's, bit for bit, and the entries are in order.
+  std::mt19937_64 random(20261202);
+  for (const std::size_t capacity : {1U, 2U, 3U, 7U, 52U}) {
+    mm::sim::detail::observation_ring ring(capacity);
+    double speed = 5.0;
+    for (int push = 0; push < 2000; ++push) {
+      const int kind = static_cast<int>(random() % 4);
+      if (kind == 0) speed += 0.25;
+      if (kind == 1) speed -= 0.5;
+      if (kind == 3) speed = std::uniform_real_distribution<double>(-0.2, 9.0)(random);
+      mm::observation o;
+      o.time = 0.01 * push;
+      o.speed = speed;
+      ring.push(o);
+      ASSERT_EQ(ring.max_speed(), ring.max_speed_by_scan()) << "capacity " << capacity << " push " << push;
+      std::vector<mm::observation> copy;
+      ring.copy_to(copy);
+      ASSERT_EQ(copy.size(), std::min<std::size_t>(capacity, push + 1));
+      EXPECT_EQ(copy.back().time, o.time);
+      for (std::size_t i = 1; i < copy.size(); ++i) ASSERT_LT(copy[i - 1].time, copy[i].time);
+    }
+    ring.clear();
+    EXPECT_EQ(ring.max_speed(), 0.0);
+  }
 }
 
 TEST(sim_sensing, a_track_keeps_the_history_window_and_no_more) {

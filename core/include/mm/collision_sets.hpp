@@ -159,7 +159,9 @@ class ego_sweep {
   std::size_t placement_index(std::size_t k, std::size_t m) const { return m * time_count_ + k; }
   /// Everything that depends on the pose, the window or the nominal curvature: the caches, the
   /// speeds and reaches, the nominal-curvature columns' blocks.
-  void start(const ego_state& ego, const collision_window& window);
+  /// `restarting`: the grids' samples and their speeds are those of the previous start (`restart`'s
+  /// precondition), so only the nominal-curvature columns' speeds are computed again.
+  void start(const ego_state& ego, const collision_window& window, bool restarting);
   /// Adds the block of grid rows [r0, r1) × columns [c0, c1) and its halves; returns its index.
   /// `sample(r, c)` is the sample index of a node; `accelerations[r]`, `curvatures[c]` its values.
   struct grid_view;
