@@ -414,10 +414,10 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     first_straight_.push_back(k);
   }
   const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
-  sets_.assign(slots, clearance_set(samples, cap));
+  sets_.assign(slots, {});
   sampled_.assign(slots, sample_mask(samples));
   floor_.assign(slots, {});
-  exact_.assign(slots, std::vector<std::uint8_t>(samples, 0));
+  exact_.assign(slots, {});
 
   // The sampled collisions. The times shared by every forecast time that includes them (t_k ≤ τ:
   // the CTRV placement) are rastered once, in order; each forecast time continues from their state
@@ -465,15 +465,11 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       }
       raster(k, o, own);
     }
-    own.hit.for_each([&](std::size_t p) {
-      sampled_[i].set(order[p]);
-      sets_[i][order[p]] = -cap;
-    });
+    own.hit.for_each([&](std::size_t p) { sampled_[i].set(order[p]); });
   }
   if (!near) {
     // Never within the walking cap of any sample: every clearance is exactly +cap.
     inert_ = true;
-    for (auto& e : exact_) std::fill(e.begin(), e.end(), std::uint8_t{1});
   }
 }
 
@@ -677,9 +673,19 @@ double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, 
   return value;
 }
 
+clearance_set& clearance_field::materialized(std::size_t i) const {
+  clearance_set& set = sets_[i];
+  if (set.empty()) {
+    set.assign(sweep_.sample_count(), cap_);
+    sampled_[i].for_each([&](std::size_t m) { set[m] = -cap_; });
+  }
+  return set;
+}
+
 double clearance_field::exact(std::size_t forecast, std::size_t m) {
   const std::size_t i = slot(forecast);
-  if (exact_[i][m]) return sets_[i][m];
+  if (inert_) return cap_;
+  if (!exact_[i].empty() && exact_[i][m]) return sets_[i][m];
   const std::size_t count = sweep_.times().size();
   const double step = sweep_.window().time_step;
   const double margin = sweep_.window().margin;
@@ -738,7 +744,8 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   if (c > -walk_cap_ && c < walk_cap_) c = std::min(c, refined_at(i, m, r.argmin, r.at_argmin));
   c = std::clamp(c, -cap_, cap_);
   ++work_.exact_values;
-  sets_[i][m] = c;
+  if (exact_[i].empty()) exact_[i].assign(sweep_.sample_count(), 0);
+  materialized(i)[m] = c;
   exact_[i][m] = 1;
   if (r.value < walk_cap_) {
     if (argmin_.empty()) argmin_.resize(sets_.size());
@@ -750,7 +757,7 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
 
 double clearance_field::exact_below(std::size_t forecast, std::size_t m, double ceiling) {
   const std::size_t i = slot(forecast);
-  if (exact_[i][m] || ceiling >= cap_) return exact(forecast, m);
+  if (is_exact(forecast, m) || ceiling >= cap_) return exact(forecast, m);
   const std::size_t count = sweep_.times().size();
   const double step = sweep_.window().time_step;
   const double margin = sweep_.window().margin;
@@ -847,7 +854,7 @@ double clearance_field::floor_of_all(std::size_t m) {
 
 void clearance_field::make_all_exact() {
   for (std::size_t i = 0; i < sets_.size(); ++i) {
-    for (std::size_t m = 0; m < sets_[i].size(); ++m) exact(i, m);
+    for (std::size_t m = 0; m < sweep_.sample_count(); ++m) exact(i, m);
   }
 }
 

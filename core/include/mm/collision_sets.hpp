@@ -250,10 +250,13 @@ class clearance_field {
   bool evaluated(std::size_t i) const { return wanted_.empty() || wanted_[i] != 0; }
   /// Entry [m] of forecast time i: the exact clearance where known, else −cap for a sampled
   /// collision and +cap otherwise.
-  const clearance_set& set(std::size_t i) const { return sets_[slot(i)]; }
+  const clearance_set& set(std::size_t i) const { return materialized(slot(i)); }
   /// The samples that overlap the obstacle forecast with forecast time i at some sample time.
   const sample_mask& sampled_collisions(std::size_t i) const { return sampled_[slot(i)]; }
-  bool is_exact(std::size_t i, std::size_t m) const { return exact_[slot(i)][m] != 0; }
+  bool is_exact(std::size_t i, std::size_t m) const {
+    const std::vector<std::uint8_t>& e = exact_[slot(i)];
+    return inert_ || (!e.empty() && e[m] != 0);
+  }
   /// The clearance of sample m with forecast time i, equal to the clamped brute-force one.
   double exact(std::size_t i, std::size_t m);
   /// `exact(i, m)` when that can be below `ceiling` [m]; otherwise a value ≥ `ceiling` (then
@@ -387,12 +390,15 @@ class clearance_field {
   vec2 obstacle_half_;          ///< of the obstacle rectangle [m]
   double obstacle_radius_ = 0.0;  ///< of the obstacle disc [m]
   work work_;
-  std::vector<clearance_set> sets_;
+  /// Slot i's entries as `set` describes them, made on the first exact value or `set` call of the
+  /// slot (most slots of a step are never read by value: their vectors are never allocated).
+  clearance_set& materialized(std::size_t i) const;
+  mutable std::vector<clearance_set> sets_;  ///< [slot][m] (empty until `materialized`)
   std::vector<sample_mask> sampled_;  ///< [slot]: the sampled collisions
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
   std::vector<double> floor_all_;  ///< [m]: `floor_of_all`, NaN until computed (allocated on first use)
   std::vector<std::vector<std::uint32_t>> argmin_;  ///< [slot][m]: time index of the sampled minimum of an exact value (allocated on first use)
-  std::vector<std::vector<std::uint8_t>> exact_;
+  std::vector<std::vector<std::uint8_t>> exact_;  ///< [slot][m]: the entry of `sets_` is exact (allocated on the slot's first exact value; every entry is exact when inert)
   std::vector<prefix_walk> prefix_;  ///< [m] (allocated on first use)
   std::vector<std::vector<std::pair<std::size_t, double>>> refined_;  ///< [m]: (time index, refined minimum) on shared times (allocated on first use)
 };
