@@ -550,7 +550,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // depend on its forecast time (none turns, or those that do cannot come near), every τ_i gives
   // the same set, bit for bit: it is computed once. Without the map, ADJ with one obstacle still
   // needs the indices of the forecast times it may select.
+  // The column's combined sets themselves are kept only to be drawn (`record_samples`).
+  const bool keep_columns = whole_column && config.record_samples;
   std::vector<clearance_set> clearance_by_forecast;
+  if (keep_columns) clearance_by_forecast.reserve(tau_count);
   const bool column_constant = !options.reference && !evaluate.depends_on_forecast_time();
   const bool adjustable_alone = !constant_policy && n == 1;
   std::vector<double> mi_brake;
@@ -565,10 +568,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       }
       maneuverability_pair mi;
       if (column_constant && first) {
-        if (whole_column) clearance_by_forecast.push_back(clearance_by_forecast.back());
+        if (keep_columns) clearance_by_forecast.push_back(clearance_by_forecast.back());
         mi = *first;
       } else {
-        clearance_set& c = whole_column ? clearance_by_forecast.emplace_back() : evaluate.scratch_column();
+        clearance_set& c = keep_columns ? clearance_by_forecast.emplace_back() : evaluate.scratch_column();
         mi = evaluate.column(i, c);
         first = mi;
       }
