@@ -251,25 +251,23 @@ class evaluator {
   }
 
   /// (floor, j) of every obstacle that is not inert, `clearance_field::floor_of_all` of sample m,
-  /// ascending (ties by j); found on the first read of m and kept (one row per sample of a flat
-  /// table, allocated on the first read of any sample).
+  /// ascending (ties by j); found on the first read of m and kept: the rows of the samples read so
+  /// far, one after another in one table. The span is valid until the next call.
   std::span<const std::pair<double, std::size_t>> by_floor(std::size_t m) {
-    if (by_floor_known_.empty()) {
+    if (by_floor_row_.empty()) {
       by_floor_count_ = 0;
       for (const clearance_field& field : fields_) by_floor_count_ += field.inert() ? 0 : 1;
-      by_floor_known_.assign(samples_.size(), 0);
-      by_floor_.resize(samples_.size() * by_floor_count_);
+      by_floor_row_.assign(samples_.size(), absent);
     }
-    const std::span<std::pair<double, std::size_t>> order(by_floor_.data() + m * by_floor_count_, by_floor_count_);
-    if (!by_floor_known_[m]) {
-      std::size_t next = 0;
+    std::size_t& row = by_floor_row_[m];
+    if (row == absent) {
+      row = by_floor_.size();
       for (std::size_t j = 0; j < fields_.size(); ++j) {
-        if (!fields_[j].inert()) order[next++] = {fields_[j].floor_of_all(m), j};
+        if (!fields_[j].inert()) by_floor_.emplace_back(fields_[j].floor_of_all(m), j);
       }
-      std::sort(order.begin(), order.end());
-      by_floor_known_[m] = 1;
+      std::sort(by_floor_.begin() + static_cast<std::ptrdiff_t>(row), by_floor_.end());
     }
-    return order;
+    return std::span(by_floor_).subspan(row, by_floor_count_);
   }
 
   /// Replaces the placeholders (±cap) by the exact minimum over the obstacles wherever the
@@ -364,8 +362,8 @@ class evaluator {
   std::vector<std::uint8_t> positive_;  ///< scratch of make_read_values_exact: [m] is positive
   std::vector<std::uint8_t> read_;      ///< scratch of make_read_values_exact: [m] needs a value
   std::vector<std::uint8_t> valued_;    ///< scratch of make_read_values_exact: [m] has its exact value
-  std::vector<std::pair<double, std::size_t>> by_floor_;  ///< [m · by_floor_count_ + r]: `by_floor`
-  std::vector<std::uint8_t> by_floor_known_;              ///< [m]: its row is filled (empty until the first read)
+  std::vector<std::pair<double, std::size_t>> by_floor_;  ///< the rows of `by_floor`, `by_floor_count_` entries each
+  std::vector<std::size_t> by_floor_row_;                 ///< [m]: where sample m's row starts, or `absent` (empty until the first read)
   std::size_t by_floor_count_ = 0;                        ///< obstacles that are not inert
   static constexpr std::size_t absent = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> forecast_of_;  ///< scratch of make_read_values_exact: [j] forecast index, or `absent`
