@@ -99,8 +99,8 @@ void ego_sweep::release_caches() {
   placements_.reset();
   placement_capacity_ = 0;
   known_ = {};
-  straight_.reset();
-  straight_known_ = {};
+  // The straight parts (about 40 KB) are kept: allocating them again writes every entry (their
+  // vectors have default values), and `start` marks them all unknown anyway.
 }
 
 void ego_sweep::start(const ego_state& ego, const collision_window& window, bool restarting) {
@@ -662,14 +662,17 @@ double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, 
   // On the shared times (t ≤ τ) the search sees the same function for every τ: search once.
   const bool shared = k + 1 < first_straight_[i];
   if (shared) {
-    if (refined_.empty()) refined_.resize(sweep_.sample_count());
-    for (const auto& [argmin, value] : refined_[m]) {
-      if (argmin == k) return value;
+    if (refined_head_.empty()) refined_head_.assign(sweep_.sample_count(), none);
+    for (std::uint32_t e = refined_head_[m]; e != none; e = refined_[e].next) {
+      if (refined_[e].argmin == k) return refined_[e].value;
     }
   }
   ++work_.refinements;
   const double value = refined_minimum(sweep_.times(), k, at, at_sample);
-  if (shared) refined_[m].emplace_back(k, value);
+  if (shared) {
+    refined_.push_back({k, value, refined_head_[m]});
+    refined_head_[m] = static_cast<std::uint32_t>(refined_.size() - 1);
+  }
   return value;
 }
 
@@ -696,7 +699,6 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   // The walks then skip every time that provably lies above it by more than the argmin tolerance
   // (such a time cannot become the argmin of the running minimum, so the result is that of a walk
   // over every time); the seed's own time is looked at as any other.
-  constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
   std::uint32_t seed_time = none;
   const auto known_argmin = [&](std::size_t other, std::size_t sample) {
     if (seed_time == none && other < argmin_.size() && sample < sweep_.sample_count() && !argmin_[other].empty()) {
@@ -731,8 +733,12 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   };
   // The shared times first (kept for larger τ), then this τ's straight part. A seed from a shared
   // time is a value every larger τ shares, so it may prune the shared walk too.
-  if (prefix_.empty()) prefix_.resize(sweep_.sample_count());
-  prefix_walk& prefix = prefix_[m];
+  if (prefix_of_.empty()) prefix_of_.assign(sweep_.sample_count(), none);
+  if (prefix_of_[m] == none) {
+    prefix_of_[m] = static_cast<std::uint32_t>(prefix_.size());
+    prefix_.emplace_back();
+  }
+  prefix_walk& prefix = prefix_[prefix_of_[m]];
   const std::size_t shared = first_straight_[i];
   if (prefix.until > shared) prefix = prefix_walk{};
   const double shared_seed = seed_time < shared ? seed : std::numeric_limits<double>::infinity();
@@ -773,8 +779,8 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   std::size_t k = 0;
   // A walk over the shared times t ≤ τ_i (kept from an earlier exact value) bounds them all.
   const std::size_t shared = first_straight_[i];
-  if (shared > 0 && !prefix_.empty() && prefix_[m].until >= shared) {
-    if (std::min(prefix_[m].minimum.value, walk_cap_) < limit) return exact(forecast, m);
+  if (shared > 0 && !prefix_of_.empty() && prefix_of_[m] != none && prefix_[prefix_of_[m]].until >= shared) {
+    if (std::min(prefix_[prefix_of_[m]].minimum.value, walk_cap_) < limit) return exact(forecast, m);
     k = shared;
   }
   while (k < count) {

@@ -71,9 +71,10 @@ class ego_sweep {
   /// `ego_sweep(ego, samples, window)`, without building the grids' blocks again. Throws
   /// std::invalid_argument when what must be unchanged changed.
   void restart(const ego_state& ego, const collision_window& window);
-  /// Frees the caches of placements (about a megabyte at the default resolution) until the next
-  /// `restart`: a sweep kept between planning steps holds only its blocks and speeds. The sweep
-  /// must not be asked for placements before it is restarted.
+  /// Frees the cache of placements (about a megabyte at the default resolution) until the next
+  /// `restart`: a sweep kept between planning steps holds only its blocks, speeds and the (stale)
+  /// straight parts of its samples. The sweep must not be asked for placements before it is
+  /// restarted.
   void release_caches();
 
   const ego_state& ego() const { return ego_; }
@@ -399,8 +400,18 @@ class clearance_field {
   std::vector<double> floor_all_;  ///< [m]: `floor_of_all`, NaN until computed (allocated on first use)
   std::vector<std::vector<std::uint32_t>> argmin_;  ///< [slot][m]: time index of the sampled minimum of an exact value (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;  ///< [slot][m]: the entry of `sets_` is exact (allocated on the slot's first exact value; every entry is exact when inert)
-  std::vector<prefix_walk> prefix_;  ///< [m] (allocated on first use)
-  std::vector<std::vector<std::pair<std::size_t, double>>> refined_;  ///< [m]: (time index, refined minimum) on shared times (allocated on first use)
+  /// "No entry" in the index tables below and in `argmin_`.
+  static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  std::vector<prefix_walk> prefix_;          ///< the walks of the samples walked so far
+  std::vector<std::uint32_t> prefix_of_;     ///< [m]: sample m's walk in `prefix_`, or `none` (allocated on first use)
+  /// A refined minimum on shared times: (time index, value), and the sample's previous one.
+  struct refined_entry {
+    std::size_t argmin;
+    double value;
+    std::uint32_t next;
+  };
+  std::vector<refined_entry> refined_;       ///< every sample's refined minima, as lists
+  std::vector<std::uint32_t> refined_head_;  ///< [m]: sample m's last refined minimum, or `none` (allocated on first use)
 };
 
 /// The sampled collision sets of one obstacle for every forecast time, by brute force (the
