@@ -805,9 +805,13 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
 }
 
 double clearance_field::floor_of_all(std::size_t m) {
-  if (floor_all_.empty()) floor_all_.assign(sweep_.sample_count(), std::numeric_limits<double>::quiet_NaN());
+  if (!floor_all_) {
+    floor_all_ = std::make_unique_for_overwrite<double[]>(sweep_.sample_count());
+    floor_all_known_ = sample_mask(sweep_.sample_count());
+  }
   double& floor = floor_all_[m];
-  if (!std::isnan(floor)) return floor;
+  if (floor_all_known_.test(m)) return floor;
+  floor_all_known_.set(m);  // assigned below, before anything reads it
   // Under every forecast the obstacle's heading is within |ω| s of the start's at time s, so its
   // reference point is within v |ω| t²/2 (and 2 v t) of the straight line at time t.
   const motion_estimate& motion = obstacle_.motion;

@@ -397,7 +397,8 @@ class clearance_field {
   mutable std::vector<clearance_set> sets_;  ///< [slot][m] (empty until `materialized`)
   std::vector<sample_mask> sampled_;  ///< [slot]: the sampled collisions
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
-  std::vector<double> floor_all_;  ///< [m]: `floor_of_all`, NaN until computed (allocated on first use)
+  std::unique_ptr<double[]> floor_all_;  ///< [m]: `floor_of_all` where `floor_all_known_` (allocated, uninitialised, on first use)
+  sample_mask floor_all_known_;
   std::vector<std::vector<std::uint32_t>> argmin_;  ///< [slot][m]: time index of the sampled minimum of an exact value (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;  ///< [slot][m]: the entry of `sets_` is exact (allocated on the slot's first exact value; every entry is exact when inert)
   /// "No entry" in the index tables below and in `argmin_`.
