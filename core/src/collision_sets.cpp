@@ -98,9 +98,9 @@ void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
 void ego_sweep::release_caches() {
   placements_.reset();
   placement_capacity_ = 0;
-  known_ = {};
   // The straight parts (about 40 KB) are kept: allocating them again writes every entry (their
-  // vectors have default values), and `start` marks them all unknown anyway.
+  // vectors have default values), and `start` marks them all unknown anyway. So are the placements'
+  // stamps (40 KB), which `start` invalidates with a new stamp instead of clearing them.
 }
 
 void ego_sweep::start(const ego_state& ego, const collision_window& window, bool restarting) {
@@ -126,7 +126,13 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, bool
   }
   time_count_ = times_.size();
   const std::size_t placements = times_.size() * sample_count_;
-  known_.assign(placements, 0);
+  // A placement is cached when its stamp is this start's: a new start invalidates them all with a
+  // new stamp instead of clearing the table (cold since the vehicle's previous step).
+  if (known_.size() != placements || generation_ == std::numeric_limits<std::uint8_t>::max()) {
+    known_.assign(placements, 0);
+    generation_ = 0;
+  }
+  ++generation_;
   if (placement_capacity_ < placements) {
     placements_ = std::make_unique_for_overwrite<stored[]>(placements);
     placement_capacity_ = placements;
@@ -318,7 +324,7 @@ void ego_sweep::fill(std::size_t k, std::size_t m) const {
   const placement p = placement_at(m, times_[k]);
   const std::size_t index = placement_index(k, m);
   placements_[index] = {p.position.x, p.position.y, p.direction.x, p.direction.y};
-  known_[index] = 1;
+  known_[index] = generation_;
 }
 
 double largest_point_speed(double largest_speed, double curvature, double radius) {

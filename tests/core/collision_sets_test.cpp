@@ -279,6 +279,41 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
   }
 }
 
+TEST(collision_sets, a_sweep_restarted_hundreds_of_times_places_as_a_new_one) {
+  // The placement cache is invalidated by a stamp per start, which wraps after 255 starts. A sweep
+  // places sample 0 at its first start, is restarted n times at other poses (releasing its caches
+  // each time, as a planner does) without being asked for samples 0 and 1, and must then place
+  // both as a new sweep does — for every n around the wrap.
+  std::mt19937_64 rng(testing::property_seed() + 13);
+  const plan_input in = testing::random_scene(rng, {1, false});
+  const maneuver_samples samples = prepare(in, 0.05).samples;
+  const collision_window window{1.0, 3.0, 0.05, 0.0};
+  const auto pose_of = [&](int start) {
+    ego_state ego = in.ego;
+    ego.pose.position.x += 0.25 * static_cast<double>(start);
+    ego.pose.heading += 0.001 * static_cast<double>(start);
+    return ego;
+  };
+  for (int n = 250; n <= 262; ++n) {
+    ego_sweep restarted(pose_of(0), samples, window);
+    for (std::size_t k = 0; k < restarted.times().size(); ++k) restarted.at(k, 0);
+    for (int start = 1; start <= n; ++start) {
+      restarted.release_caches();
+      restarted.restart(pose_of(start), window);
+      restarted.at(static_cast<std::size_t>(start) % restarted.times().size(), 2);
+    }
+    const ego_sweep fresh(pose_of(n), samples, window);
+    for (const std::size_t m : {0U, 1U}) {
+      for (std::size_t k = 0; k < fresh.times().size(); ++k) {
+        const placement a = restarted.at(k, m);
+        const placement b = fresh.at(k, m);
+        ASSERT_TRUE(a.position == b.position && a.direction == b.direction)
+            << "after " << n << " restarts, time " << k << " sample " << m;
+      }
+    }
+  }
+}
+
 TEST(collision_sets, a_sweep_refuses_to_restart_at_another_speed) {
   std::mt19937_64 rng(testing::property_seed() + 12);
   plan_input in = testing::random_scene(rng, {1, false});

@@ -72,8 +72,8 @@ class ego_sweep {
   /// std::invalid_argument when what must be unchanged changed.
   void restart(const ego_state& ego, const collision_window& window);
   /// Frees the cache of placements (about a megabyte at the default resolution) until the next
-  /// `restart`: a sweep kept between planning steps holds only its blocks, speeds and the (stale)
-  /// straight parts of its samples. The sweep must not be asked for placements before it is
+  /// `restart`: a sweep kept between planning steps holds only its blocks, speeds, the (stale)
+  /// straight parts of its samples and the placements' stamps. The sweep must not be asked for placements before it is
   /// restarted.
   void release_caches();
 
@@ -88,7 +88,7 @@ class ego_sweep {
   /// Placement of sample m at time index k.
   placement at(std::size_t k, std::size_t m) const {
     const std::size_t index = placement_index(k, m);
-    if (!known_[index]) fill(k, m);
+    if (known_[index] != generation_) fill(k, m);
     const stored& p = placements_[index];
     return {{p.px, p.py}, {p.dx, p.dy}};
   }
@@ -195,7 +195,8 @@ class ego_sweep {
   mutable std::vector<std::uint8_t> straight_known_;
   std::vector<double> sample_speed_;
   std::vector<double> sample_point_speed_;
-  mutable std::vector<std::uint8_t> known_;
+  mutable std::vector<std::uint8_t> known_;  ///< [placement_index]: `generation_` where cached
+  std::uint8_t generation_ = 0;                ///< the current start's stamp (1 to 255)
   mutable std::unique_ptr<stored[]> placements_;
   std::size_t placement_capacity_ = 0;  ///< entries allocated in `placements_`
   std::size_t time_count_ = 0;          ///< `times_.size()`
