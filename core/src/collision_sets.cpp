@@ -785,8 +785,8 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   std::size_t k = 0;
   // A walk over the shared times t ≤ τ_i (kept from an earlier exact value) bounds them all.
   const std::size_t shared = first_straight_[i];
-  if (shared > 0 && !prefix_of_.empty() && prefix_of_[m] != none && prefix_[prefix_of_[m]].until >= shared) {
-    if (std::min(prefix_[prefix_of_[m]].minimum.value, walk_cap_) < limit) return exact(forecast, m);
+  if (const prefix_walk* prefix = walked_prefix(m); shared > 0 && prefix != nullptr && prefix->until >= shared) {
+    if (std::min(prefix->minimum.value, walk_cap_) < limit) return exact(forecast, m);
     k = shared;
   }
   while (k < count) {

@@ -73,8 +73,8 @@ class ego_sweep {
   void restart(const ego_state& ego, const collision_window& window);
   /// Frees the cache of placements (about a megabyte at the default resolution) until the next
   /// `restart`: a sweep kept between planning steps holds only its blocks, speeds, the (stale)
-  /// straight parts of its samples and the placements' stamps. The sweep must not be asked for placements before it is
-  /// restarted.
+  /// straight parts of its samples and the placements' stamps. The sweep must not be asked for
+  /// placements before it is restarted.
   void release_caches();
 
   const ego_state& ego() const { return ego_; }
@@ -406,6 +406,10 @@ class clearance_field {
   static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
   std::vector<prefix_walk> prefix_;          ///< the walks of the samples walked so far
   std::vector<std::uint32_t> prefix_of_;     ///< [m]: sample m's walk in `prefix_`, or `none` (allocated on first use)
+  /// Sample m's walk over the shared times, or null when it has none yet.
+  const prefix_walk* walked_prefix(std::size_t m) const {
+    return prefix_of_.empty() || prefix_of_[m] == none ? nullptr : &prefix_[prefix_of_[m]];
+  }
   /// A refined minimum on shared times: (time index, value), and the sample's previous one.
   struct refined_entry {
     std::size_t argmin;
