@@ -3,6 +3,8 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -184,13 +186,26 @@ void write_text(const std::filesystem::path& file, const std::string& text) {
   if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
+/// `fixed(value, decimals)` (decimals 0 to 17) appended to `out` without a string in between:
+/// std::to_chars, correctly rounded as fmt's "{:.6f}" is, so the same characters.
+void append_fixed(fmt::memory_buffer& out, double value, int decimals = 6) {
+  if (!std::isfinite(value)) return;
+  // The longest fixed text of a finite double: 309 digits before the point, the point, the decimals.
+  std::array<char, 330> text{};
+  const std::to_chars_result end =
+      std::to_chars(text.data(), text.data() + text.size(), value, std::chars_format::fixed, std::clamp(decimals, 0, 17));
+  const char* begin = text.data();
+  // "-0.000" is written "0.000".
+  if (*begin == '-' && std::all_of(begin + 1, static_cast<const char*>(end.ptr), [](char c) { return c == '0' || c == '.'; })) ++begin;
+  out.append(begin, end.ptr);
+}
+
 }  // namespace
 
 std::string fixed(double value, int decimals) {
-  if (!std::isfinite(value)) return {};
-  std::string text = fmt::format("{:.{}f}", value, decimals);
-  if (text.front() == '-' && text.find_first_not_of("-0.") == std::string::npos) text.erase(0, 1);
-  return text;
+  fmt::memory_buffer out;
+  append_fixed(out, value, decimals);
+  return fmt::to_string(out);
 }
 
 std::string scenario_policy(const mm::sim::scenario& s) {
@@ -213,13 +228,30 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
   mm::sim::simulation sim(s, {settings.measure_cpu_time, settings.jobs});
   std::size_t shown_step = 0;
   mm::sim::run(sim, [&](const mm::sim::simulation& now) {
-    const std::string t = fixed(now.time());
+    fmt::memory_buffer t;
+    append_fixed(t, now.time());
+    const std::string_view time(t.data(), t.size());
+    // Fields appended one by one: a row's numbers go straight into the file's buffer.
+    const auto field = [](fmt::memory_buffer& row, std::string_view text) {
+      row.append(text);
+      row.push_back(',');
+    };
+    const auto number = [](fmt::memory_buffer& row, double value, char after) {
+      append_fixed(row, value);
+      row.push_back(after);
+    };
     for (mm::sim::agent_id id = 0; id < now.agent_count(); ++id) {
       const mm::sim::agent_state& a = now.state(id);
       if (!a.present()) continue;
-      fmt::format_to(std::back_inserter(trajectories.buffer()), "{},{},{},{},{},{},{},{}\n", t, now.info(id).name,
-                     fixed(a.pose.position.x), fixed(a.pose.position.y), fixed(a.pose.heading), fixed(a.speed),
-                     fixed(a.acceleration), fixed(a.curvature));
+      fmt::memory_buffer& row = trajectories.buffer();
+      field(row, time);
+      field(row, now.info(id).name);
+      number(row, a.pose.position.x, ',');
+      number(row, a.pose.position.y, ',');
+      number(row, a.pose.heading, ',');
+      number(row, a.speed, ',');
+      number(row, a.acceleration, ',');
+      number(row, a.curvature, '\n');
     }
     for (mm::sim::agent_id id = 0; id < now.planning_vehicle_count(); ++id) {
       if (!now.planned_now(id)) continue;
@@ -227,12 +259,23 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
       const mm::plan_result& r = p.result;
       const std::string& name = now.info(id).name;
       for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
-        fmt::format_to(std::back_inserter(map.buffer()), "{},{},{},{},{},{}\n", t, name, fixed(r.forecast_times[i]),
-                       fixed(r.mi_brake[i]), fixed(r.mi_accelerate[i]), r.excluded[i] ? 1 : 0);
+        fmt::memory_buffer& row = map.buffer();
+        field(row, time);
+        field(row, name);
+        number(row, r.forecast_times[i], ',');
+        number(row, r.mi_brake[i], ',');
+        number(row, r.mi_accelerate[i], ',');
+        row.append(std::string_view(r.excluded[i] ? "1\n" : "0\n"));
       }
-      fmt::format_to(std::back_inserter(decisions.buffer()), "{},{},{},{},{},{},{}\n", t, name, fixed(r.forecast_time),
-                     mm::to_string(r.selected_family), mm::to_string(r.mode), fixed(r.time_to_collision),
-                     settings.measure_cpu_time ? fixed(p.cpu_time_us, 3) : std::string());
+      fmt::memory_buffer& row = decisions.buffer();
+      field(row, time);
+      field(row, name);
+      number(row, r.forecast_time, ',');
+      field(row, mm::to_string(r.selected_family));
+      field(row, mm::to_string(r.mode));
+      number(row, r.time_to_collision, ',');
+      if (settings.measure_cpu_time) append_fixed(row, p.cpu_time_us, 3);
+      row.push_back('\n');
     }
     trajectories.flush();
     map.flush();
