@@ -125,8 +125,46 @@ struct simulation::impl {
     std::optional<plan_record> last_plan;
     std::vector<detail::observation_ring> tracks;  ///< [target id]
     std::vector<detail::noise_source> noise;       ///< [target id]
-    mm::planner planner;                           ///< reuses what its previous step sampled (bit for bit mm::plan)
     metrics_state metrics;
+  };
+
+  /// The planners of one thread. A planner reuses what its previous plan sampled while the ego's
+  /// speed (with its limits, footprint and horizon) is the same, and returns bit for bit what
+  /// `mm::plan` returns whatever it planned before; so any vehicle may use any planner. The vehicles
+  /// a thread plans share them by speed: the many that cruise at one speed plan with one planner,
+  /// whose sampled sets and blocks stay in the cache from vehicle to vehicle, instead of each
+  /// vehicle's own being fetched cold from memory.
+  struct planner_set {
+    static constexpr std::size_t capacity = 4;
+    struct entry {
+      double speed = 0.0;
+      std::uint64_t last_use = 0;
+      mm::planner planner;
+    };
+    std::vector<entry> entries;
+    std::uint64_t uses = 0;
+    /// The planner last used at this speed, else the least recently used one (or a new one).
+    mm::planner& for_speed(double speed) {
+      ++uses;
+      entry* chosen = nullptr;
+      for (entry& e : entries) {
+        if (e.speed == speed) {
+          chosen = &e;
+          break;
+        }
+      }
+      if (chosen == nullptr) {
+        if (entries.size() < capacity) {
+          chosen = &entries.emplace_back();
+        } else {
+          chosen = &*std::min_element(entries.begin(), entries.end(),
+                                      [](const entry& a, const entry& b) { return a.last_use < b.last_use; });
+        }
+        chosen->speed = speed;
+      }
+      chosen->last_use = uses;
+      return chosen->planner;
+    }
   };
 
   struct scenario sc;
@@ -137,6 +175,7 @@ struct simulation::impl {
   std::vector<const scripted_motion*> motions;     ///< per id; null for planning vehicles and statics
   std::vector<vehicle> vehicles;                   ///< ids 0..P−1
   std::unique_ptr<detail::worker_pool> pool;       ///< the helper threads of `decide` (jobs > 1), kept for the run
+  std::vector<planner_set> planners;               ///< [thread of `decide`]
   std::vector<crash_event> crash_log;
   std::size_t step = 0;
   std::size_t last_step = 0;
@@ -441,16 +480,19 @@ struct simulation::impl {
   /// command, so vehicles can be decided in any order, or in parallel.
   void decide() {
     const std::size_t jobs = std::min(std::max<std::size_t>(options.jobs, 1), vehicles.size());
+    if (planners.size() < jobs) planners.resize(jobs);
     if (jobs <= 1) {
-      for (vehicle& v : vehicles) decide(v);
+      for (vehicle& v : vehicles) decide(v, planners.front());
       return;
     }
     std::atomic<std::size_t> next{0};
+    std::atomic<std::size_t> next_thread{0};
     std::vector<std::exception_ptr> errors(vehicles.size());
     const auto work = [&] {
+      planner_set& own = planners[next_thread.fetch_add(1)];  // each call runs on its own thread
       for (std::size_t i = next.fetch_add(1); i < vehicles.size(); i = next.fetch_add(1)) {
         try {
-          decide(vehicles[i]);
+          decide(vehicles[i], own);
         } catch (...) {
           errors[i] = std::current_exception();
         }
@@ -464,7 +506,7 @@ struct simulation::impl {
     }
   }
 
-  void decide(vehicle& v) {
+  void decide(vehicle& v, planner_set& planners_of_thread) {
     v.planned_now = false;
     agent_state& s = states[id_of(v)];
     if (s.status == agent_status::waiting || s.status == agent_status::active) sense(v);
@@ -474,14 +516,14 @@ struct simulation::impl {
       v.command = nominal;
       v.command_mode = mm::planning_mode::nominal;
     } else if (!v.has_command || step % v.spec->planning_period == 0) {
-      plan(v, nominal);
+      plan(v, nominal, planners_of_thread);
     }
     v.has_command = true;
     s.acceleration = v.command.acceleration;
     s.curvature = v.command.curvature;
   }
 
-  void plan(vehicle& v, const maneuver& nominal) {
+  void plan(vehicle& v, const maneuver& nominal, planner_set& planners_of_thread) {
     // One input buffer per thread, not per vehicle: filled for vehicle after vehicle, its memory
     // (the obstacles' histories) stays in the cache instead of being fetched cold for each vehicle.
     // `fill_input` sets every field.
@@ -491,12 +533,12 @@ struct simulation::impl {
     record.time = now();
     if (options.measure_cpu_time) {
       const auto start = std::chrono::steady_clock::now();
-      record.result = v.planner.plan(input);
+      record.result = planners_of_thread.for_speed(input.ego.speed).plan(input);
       const auto stop = std::chrono::steady_clock::now();
       record.cpu_time_us = std::chrono::duration<double, std::micro>(stop - start).count();
       v.metrics.cpu_us.push_back(record.cpu_time_us);
     } else {
-      record.result = v.planner.plan(input);
+      record.result = planners_of_thread.for_speed(input.ego.speed).plan(input);
     }
     if (!record.result.ok()) {
       throw std::logic_error("planning vehicle \"" + infos[id_of(v)].name + "\" at t = " + std::to_string(now()) +

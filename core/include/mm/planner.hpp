@@ -99,7 +99,9 @@ struct planning_cache;
 /// speed, limits and footprint radius, the displacement horizon and the resolution are unchanged —
 /// as they are while a vehicle cruises at a steady speed: the sampled displacement sets [AS−], [AS+]
 /// (spec §3, whose cell areas cost a few thousand sines) and the ego's tree of maneuver blocks.
-/// Holds that cache: use one per vehicle, from one thread at a time.
+/// Holds that cache: use it from one thread at a time. Any planner may plan any vehicle (the
+/// result never depends on what it planned before), so many vehicles at one speed can share one,
+/// which keeps its cache in the processor's (the simulator keeps a few per thread, by speed).
 class planner {
  public:
   planner();
