@@ -84,6 +84,29 @@ void observation_ring::copy_to(std::vector<observation>& out) const {
   for (const std::span<const observation> part : segments()) out.insert(out.end(), part.begin(), part.end());
 }
 
+void observation_ring::copy_last_to(std::size_t count, std::vector<observation>& out) const {
+  out.clear();
+  out.reserve(count);
+  std::size_t skip = size_ - std::min(count, size_);
+  for (const std::span<const observation> part : segments()) {
+    const std::size_t from = std::min(skip, part.size());
+    out.insert(out.end(), part.begin() + static_cast<std::ptrdiff_t>(from), part.end());
+    skip -= from;
+  }
+}
+
+double observation_ring::max_speed_of_last(std::size_t count) const {
+  // Every entry of the window that is not a candidate was dropped for a later, at least as fast
+  // one, which is in the window too; the candidates' speeds fall from the oldest on.
+  const std::uint64_t start = pushed_ - std::min(count, size_);
+  const std::size_t slots = maxima_.size();
+  for (std::size_t i = 0; i < maxima_size_; ++i) {
+    const std::pair<double, std::uint64_t>& candidate = maxima_[(maxima_head_ + i) % slots];
+    if (candidate.second >= start) return std::max(0.0, candidate.first);
+  }
+  return 0.0;
+}
+
 double observation_ring::max_speed() const {
   return maxima_size_ == 0 ? 0.0 : std::max(0.0, maxima_[maxima_head_].first);
 }

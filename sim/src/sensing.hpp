@@ -49,8 +49,14 @@ class observation_ring {
   const observation& back() const;
   /// Oldest first.
   void copy_to(std::vector<observation>& out) const;
+  /// The last `count` entries (count ≤ size()), oldest first: what a ring of capacity `count` fed
+  /// the same observations would `copy_to`.
+  void copy_last_to(std::size_t count, std::vector<observation>& out) const;
   /// Largest observed speed in the ring and 0 [m/s]: max(0, speeds), in O(1).
   double max_speed() const;
+  /// The same over the last `count` entries (count ≤ size()): from the sliding window's candidates,
+  /// the first one pushed at or after the window's start.
+  double max_speed_of_last(std::size_t count) const;
   /// The same by a scan of the ring (the reference of `max_speed`).
   double max_speed_by_scan() const;
 

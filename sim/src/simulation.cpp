@@ -123,7 +123,12 @@ struct simulation::impl {
     bool has_command = false;
     bool planned_now = false;
     std::optional<plan_record> last_plan;
-    std::vector<detail::observation_ring> tracks;  ///< [target id]
+    std::vector<detail::observation_ring> tracks;  ///< [target id]; with exact sensing only once crashed (frozen)
+    /// With exact sensing: [target id] how many of the target's last observations (`observed`) this
+    /// vehicle holds — consecutive steps in range, at most `track_capacity`.
+    std::vector<std::uint32_t> seen;
+    std::size_t track_capacity = 2;
+    bool frozen = false;  ///< crashed: its tracks were copied out of `observed` and no longer change
     std::vector<detail::noise_source> noise;       ///< [target id]
     metrics_state metrics;
   };
@@ -176,6 +181,11 @@ struct simulation::impl {
   std::vector<vehicle> vehicles;                   ///< ids 0..P−1
   std::unique_ptr<detail::worker_pool> pool;       ///< the helper threads of `decide` (jobs > 1), kept for the run
   std::vector<planner_set> planners;               ///< [thread of `decide`]
+  /// Exact sensing (no noise): every observer sees the same states, so the observations are kept
+  /// once per target (`observed`) instead of in a ring per observer and target; an observer holds
+  /// only how many of them it has seen. The same histories, from memory that stays in the cache.
+  bool exact_sensing = false;
+  std::vector<detail::observation_ring> observed;  ///< [agent id], with exact sensing
   std::vector<crash_event> crash_log;
   std::size_t step = 0;
   std::size_t last_step = 0;
@@ -199,8 +209,17 @@ struct simulation::impl {
       v.spec = &sc.planning_vehicles[i];
       const double window = v.spec->planner.history_window;
       const auto capacity = static_cast<std::size_t>(std::floor(window / sc.time_step + 1e-9)) + 2;
+      v.track_capacity = capacity;
       v.tracks.assign(infos.size(), detail::observation_ring(capacity));
+      v.seen.assign(infos.size(), 0);
       for (const agent_info& target : infos) v.noise.emplace_back(sc.seed, infos[i].name, target.name);
+    }
+    const sensing_noise& noise = sc.noise;
+    exact_sensing = !(noise.position_sd > 0.0 || noise.heading_sd > 0.0 || noise.speed_sd > 0.0);
+    if (exact_sensing && !vehicles.empty()) {
+      std::size_t capacity = 0;
+      for (const vehicle& v : vehicles) capacity = std::max(capacity, v.track_capacity);
+      observed.assign(infos.size(), detail::observation_ring(capacity));
     }
     advance_agents(0.0, true);
     detect_crashes();
@@ -288,6 +307,7 @@ struct simulation::impl {
     s.curvature = 0.0;
     v.planned_now = false;
     for (detail::observation_ring& ring : v.tracks) ring.clear();
+    std::fill(v.seen.begin(), v.seen.end(), 0);
   }
 
   void advance_scripted(agent_id id) {
@@ -348,11 +368,26 @@ struct simulation::impl {
       vehicles[id].command = {};
       vehicles[id].command_mode = mm::planning_mode::nominal;
       vehicles[id].planned_now = false;
+      freeze_tracks(vehicles[id]);
     }
     s.status = agent_status::crashed;
     s.speed = 0.0;
     s.acceleration = 0.0;
     s.curvature = 0.0;
+  }
+
+  /// A crashed vehicle senses no more: with exact sensing its tracks are copied out of the shared
+  /// observations now (which go on), as its own rings would have kept them.
+  void freeze_tracks(vehicle& v) {
+    if (!exact_sensing || v.frozen) return;
+    v.frozen = true;
+    std::vector<mm::observation> history;
+    for (agent_id j = 0; j < infos.size(); ++j) {
+      detail::observation_ring& ring = v.tracks[j];
+      ring.clear();
+      observed[j].copy_last_to(v.seen[j], history);
+      for (const mm::observation& o : history) ring.push(o);
+    }
   }
 
   // --- 3. metrics ------------------------------------------------------------------------------
@@ -425,6 +460,11 @@ struct simulation::impl {
                                                 target.pose.position);
       if (!in_range) {
         ring.clear();
+        v.seen[j] = 0;
+        continue;
+      }
+      if (exact_sensing) {
+        v.seen[j] = static_cast<std::uint32_t>(std::min<std::size_t>(v.seen[j] + 1, v.track_capacity));
         continue;
       }
       mm::observation o{now(), target.pose, target.speed};
@@ -454,17 +494,25 @@ struct simulation::impl {
     if (!options.map_columns) input.config.map_column = false;
     const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
     std::size_t count = 0;
+    const bool shared = exact_sensing && !v.frozen;
     for (agent_id j = 0; j < infos.size(); ++j) {
-      const detail::observation_ring& ring = v.tracks[j];
+      // The vehicle's track of j: its own ring, or the last `seen[j]` of the shared observations.
+      const detail::observation_ring& ring = shared ? observed[j] : v.tracks[j];
+      const std::size_t size = shared ? v.seen[j] : ring.size();
       const mm::obstacle_kind kind = obstacle_kind_of(infos[j].kind);
-      if (ring.size() < (kind == mm::obstacle_kind::static_obstacle ? 1U : 2U)) continue;
-      if (!is_planner_relevant(v, j, own_reach, ring.max_speed() + 1.0, ring.back().pose.position)) continue;
+      if (size < (kind == mm::obstacle_kind::static_obstacle ? 1U : 2U)) continue;
+      const double max_speed = shared ? ring.max_speed_of_last(size) : ring.max_speed();
+      if (!is_planner_relevant(v, j, own_reach, max_speed + 1.0, ring.back().pose.position)) continue;
       if (count == input.obstacles.size()) input.obstacles.emplace_back();
       mm::obstacle_track& track = input.obstacles[count++];
       track.id = static_cast<std::uint32_t>(j);
       track.kind = kind;
       track.shape = infos[j].shape;
-      ring.copy_to(track.history);
+      if (shared) {
+        ring.copy_last_to(size, track.history);
+      } else {
+        ring.copy_to(track.history);
+      }
     }
     input.obstacles.resize(count);
   }
@@ -479,6 +527,17 @@ struct simulation::impl {
   /// (poses and speeds, which nothing changes here) and writes only its own runtime and its own
   /// command, so vehicles can be decided in any order, or in parallel.
   void decide() {
+    if (exact_sensing) {
+      // What every observer sees of each agent this step (`sense` then counts what it saw).
+      for (agent_id j = 0; j < infos.size(); ++j) {
+        const agent_state& target = states[j];
+        if (target.present()) {
+          observed[j].push({now(), target.pose, target.speed});
+        } else {
+          observed[j].clear();
+        }
+      }
+    }
     const std::size_t jobs = std::min(std::max<std::size_t>(options.jobs, 1), vehicles.size());
     if (planners.size() < jobs) planners.resize(jobs);
     if (jobs <= 1) {

@@ -111,6 +111,82 @@ TEST(sim_sensing, the_ring_keeps_its_largest_speed_as_a_scan_finds_it) {
   }
 }
 
+TEST(sim_sensing, the_last_entries_of_a_ring_are_what_a_shorter_ring_fed_the_same_observations_keeps) {
+  // The shared observations of exact sensing: an observer's track is the last n entries of the
+  // target's ring, which must be what its own ring of capacity n would hold (the reference), with
+  // the same largest speed, bit for bit; also after the target's ring was cleared.
+  std::mt19937_64 random(20261203);
+  constexpr std::size_t capacity = 12;
+  mm::sim::detail::observation_ring shared(capacity);
+  std::vector<mm::sim::detail::observation_ring> own;
+  for (std::size_t n = 1; n <= capacity; ++n) own.emplace_back(n);
+  std::size_t since_clear = 0;
+  for (int push = 0; push < 3000; ++push) {
+    if (push % 500 == 499) {
+      shared.clear();
+      for (auto& ring : own) ring.clear();
+      since_clear = 0;
+    }
+    mm::observation o;
+    o.time = 0.01 * push;
+    o.pose.position = {0.1 * push, 0.0};
+    o.speed = std::uniform_real_distribution<double>(-0.3, 9.0)(random);
+    if (random() % 5 == 0) o.speed = 4.0;  // ties
+    shared.push(o);
+    for (auto& ring : own) ring.push(o);
+    ++since_clear;
+    for (std::size_t n = 0; n <= std::min(capacity, since_clear); ++n) {
+      std::vector<mm::observation> last;
+      shared.copy_last_to(n, last);
+      ASSERT_EQ(last.size(), n) << "push " << push;
+      if (n == 0) {
+        EXPECT_EQ(shared.max_speed_of_last(0), 0.0);
+        continue;
+      }
+      std::vector<mm::observation> reference;
+      own[n - 1].copy_to(reference);
+      ASSERT_EQ(reference.size(), n);
+      for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(last[i].time, reference[i].time) << "push " << push << ", last " << n << ", entry " << i;
+        ASSERT_EQ(last[i].speed, reference[i].speed);
+      }
+      ASSERT_EQ(shared.max_speed_of_last(n), own[n - 1].max_speed()) << "push " << push << ", last " << n;
+      ASSERT_EQ(shared.max_speed_of_last(n), own[n - 1].max_speed_by_scan());
+    }
+  }
+}
+
+TEST(sim_sensing, a_crashed_vehicle_keeps_the_tracks_it_had_when_it_crashed) {
+  // Exact sensing keeps one ring per target; a crashed vehicle senses no more, so its tracks must
+  // stay those of its last step while the others' go on (C keeps the run going).
+  scenario s = crossing(false);
+  planning_vehicle c = cruising("C", straight_path({0.0, 200.0}, 0.0, 400.0), 10.0);
+  c.avoidance = false;
+  s.planning_vehicles.push_back(c);
+  simulation sim(s);
+  while (sim.state(0).status != agent_status::crashed && !sim.ended()) sim.step();
+  ASSERT_EQ(sim.state(0).status, agent_status::crashed);
+  const mm::plan_input at_crash = *sim.planning_input(0);
+  ASSERT_FALSE(at_crash.obstacles.empty());
+  const double crash_time = sim.time();
+  for (int k = 0; k < 60 && !sim.ended(); ++k) sim.step();
+  ASSERT_GT(sim.time(), crash_time + 0.5);
+  const mm::plan_input later = *sim.planning_input(0);
+  ASSERT_EQ(later.obstacles.size(), at_crash.obstacles.size());
+  for (std::size_t j = 0; j < later.obstacles.size(); ++j) {
+    const auto& a = at_crash.obstacles[j].history;
+    const auto& b = later.obstacles[j].history;
+    EXPECT_EQ(later.obstacles[j].id, at_crash.obstacles[j].id);
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      EXPECT_EQ(a[i].time, b[i].time);
+      EXPECT_EQ(a[i].pose.position, b[i].pose.position);
+      EXPECT_EQ(a[i].speed, b[i].speed);
+    }
+    EXPECT_LT(b.back().time, crash_time);
+  }
+}
+
 TEST(sim_sensing, a_track_keeps_the_history_window_and_no_more) {
   simulation sim(watcher({}, 0));
   while (sim.time() < 2.0 - 1e-9) sim.step();
