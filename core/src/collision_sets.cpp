@@ -95,14 +95,6 @@ void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
   start(ego, window, true);
 }
 
-void ego_sweep::release_caches() {
-  placements_.reset();
-  placement_capacity_ = 0;
-  // The straight parts (about 40 KB) are kept: allocating them again writes every entry (their
-  // vectors have default values), and `start` marks them all unknown anyway. So are the placements'
-  // stamps (40 KB), which `start` invalidates with a new stamp instead of clearing them.
-}
-
 void ego_sweep::start(const ego_state& ego, const collision_window& window, bool restarting) {
   ego_ = ego;
   window_ = window;
@@ -124,18 +116,23 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, bool
     sample_speed_.push_back(v);
     sample_point_speed_.push_back(mm::largest_point_speed(v, u.curvature, ego_radius_));
   }
+  // The placements in the ego's frame depend only on the speed, the samples and the sample times:
+  // a restart with the same times keeps them, except the nominal-curvature columns' (rewritten).
+  const bool same_times = restarting && window.time_step == local_time_step_ && window.duration == local_duration_ &&
+                          times_.size() == time_count_;
+  local_time_step_ = window.time_step;
+  local_duration_ = window.duration;
   time_count_ = times_.size();
   const std::size_t placements = times_.size() * sample_count_;
-  // A placement is cached when its stamp is this start's: a new start invalidates them all with a
-  // new stamp instead of clearing the table (cold since the vehicle's previous step).
-  if (known_.size() != placements || generation_ == std::numeric_limits<std::uint8_t>::max()) {
-    known_.assign(placements, 0);
-    generation_ = 0;
-  }
-  ++generation_;
-  if (placement_capacity_ < placements) {
-    placements_ = std::make_unique_for_overwrite<stored[]>(placements);
-    placement_capacity_ = placements;
+  if (same_times) {
+    std::fill(local_known_.begin() + static_cast<std::ptrdiff_t>(placement_index(0, kept)), local_known_.end(), 0);
+  } else {
+    if (local_known_.size() != placements || local_generation_ == std::numeric_limits<std::uint8_t>::max()) {
+      local_known_.assign(placements, 0);
+      local_generation_ = 0;
+      local_ = std::make_unique_for_overwrite<stored[]>(placements);
+    }
+    ++local_generation_;
   }
   largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, horizon, cap);
   largest_point_speed_ = largest_speed_ * (1.0 + max_curvature(ego.speed, ego.limits) * ego_radius_);
@@ -321,10 +318,19 @@ const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
 }
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {
-  const placement p = placement_at(m, times_[k]);
+  // `placement_at`'s placement in the ego's frame: on the arc `maneuver_local_placement`, on the
+  // straight part the arc's end moved along its direction.
+  const double t = times_[k];
+  placement l;
+  if (t > window_.horizon) {
+    const straight_part& part = straight(m);
+    l = {part.local + (part.speed * (t - window_.horizon)) * part.along, part.along};
+  } else {
+    l = maneuver_local_placement(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
+  }
   const std::size_t index = placement_index(k, m);
-  placements_[index] = {p.position.x, p.position.y, p.direction.x, p.direction.y};
-  known_[index] = generation_;
+  local_[index] = {l.position.x, l.position.y, l.direction.x, l.direction.y};
+  local_known_[index] = local_generation_;
 }
 
 double largest_point_speed(double largest_speed, double curvature, double radius) {

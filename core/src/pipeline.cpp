@@ -513,13 +513,6 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // Clearances per obstacle and forecast time (spec §5).
   std::optional<ego_sweep> own_sweep;
   const ego_sweep* sweep = nullptr;
-  // A cached sweep is kept until the vehicle's next step with its blocks, not its megabyte of placements.
-  struct release_on_return {
-    planning_cache* cache;
-    ~release_on_return() {
-      if (cache != nullptr && cache->sweep) cache->sweep->release_caches();
-    }
-  } release{reuse ? cache : nullptr};
   if (!options.reference && n > 0) {
     if (!reuse) {
       sweep = &own_sweep.emplace(ego, samples, window);

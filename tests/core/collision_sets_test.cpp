@@ -240,9 +240,15 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
     SCOPED_TRACE(testing::describe(second));
     maneuver_samples samples = prepare(first, 0.05).samples;
     ego_sweep restarted(first.ego, samples, {1.0, 3.0, 0.05, 0.0});
-    for (std::size_t m = 0; m < samples.size(); m += 7) restarted.at(m % restarted.times().size(), m);  // fill some caches
+    // Every placement cached, the nominal-curvature columns' included (which the restart rewrites).
+    for (std::size_t k = 0; k < restarted.times().size(); ++k) {
+      for (std::size_t m = 0; m < samples.size(); ++m) restarted.at(k, m);
+    }
     set_nominal_curvature(samples, second.ego, second.nominal.curvature, second.config.displacement_horizon);
-    const collision_window window{1.0, 2.5, 0.02 + 0.03 * unit(rng), 0.3 * unit(rng)};
+    // Every other trial the same sample times (the placements in the ego's frame are kept), the
+    // others a new time step and duration.
+    const collision_window window = trial % 2 == 0 ? collision_window{1.0, 3.0, 0.05, 0.3 * unit(rng)}
+                                                   : collision_window{1.0, 2.5, 0.02 + 0.03 * unit(rng), 0.3 * unit(rng)};
     restarted.restart(second.ego, window);
     const maneuver_samples fresh_samples = prepare(second, 0.05).samples;
     ASSERT_EQ(samples.maneuvers, fresh_samples.maneuvers);
@@ -280,14 +286,18 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
 }
 
 TEST(collision_sets, a_sweep_restarted_hundreds_of_times_places_as_a_new_one) {
-  // The placement cache is invalidated by a stamp per start, which wraps after 255 starts. A sweep
-  // places sample 0 at its first start, is restarted n times at other poses (releasing its caches
-  // each time, as a planner does) without being asked for samples 0 and 1, and must then place
-  // both as a new sweep does — for every n around the wrap.
+  // The placement cache is invalidated by a stamp per start with other sample times, which wraps
+  // after 255 such starts. A sweep places sample 0 at its first start, is restarted n times at
+  // other poses and alternately shorter windows (as many sample times, the last one earlier)
+  // without being asked for samples 0 and 1, and must then place both as a new sweep does — for
+  // every n around the wrap.
   std::mt19937_64 rng(testing::property_seed() + 13);
   const plan_input in = testing::random_scene(rng, {1, false});
   const maneuver_samples samples = prepare(in, 0.05).samples;
   const collision_window window{1.0, 3.0, 0.05, 0.0};
+  const collision_window shorter{1.0, 2.99, 0.05, 0.0};
+  ASSERT_EQ(sample_times(2.99, 0.05).size(), sample_times(3.0, 0.05).size());
+  const auto window_of = [&](int start) { return start % 2 == 0 ? window : shorter; };
   const auto pose_of = [&](int start) {
     ego_state ego = in.ego;
     ego.pose.position.x += 0.25 * static_cast<double>(start);
@@ -295,14 +305,13 @@ TEST(collision_sets, a_sweep_restarted_hundreds_of_times_places_as_a_new_one) {
     return ego;
   };
   for (int n = 250; n <= 262; ++n) {
-    ego_sweep restarted(pose_of(0), samples, window);
+    ego_sweep restarted(pose_of(0), samples, window_of(0));
     for (std::size_t k = 0; k < restarted.times().size(); ++k) restarted.at(k, 0);
     for (int start = 1; start <= n; ++start) {
-      restarted.release_caches();
-      restarted.restart(pose_of(start), window);
+      restarted.restart(pose_of(start), window_of(start));
       restarted.at(static_cast<std::size_t>(start) % restarted.times().size(), 2);
     }
-    const ego_sweep fresh(pose_of(n), samples, window);
+    const ego_sweep fresh(pose_of(n), samples, window_of(n));
     for (const std::size_t m : {0U, 1U}) {
       for (std::size_t k = 0; k < fresh.times().size(); ++k) {
         const placement a = restarted.at(k, m);

@@ -50,8 +50,11 @@ double refinement_threshold(double rate, double time_step);
 
 /// The ego's trajectories for every sample of a `maneuver_samples` over the collision window,
 /// shared by all obstacles and forecast times of a planning step. Placements are computed lazily,
-/// the first time a (sample, sample time) pair is asked for, and kept; on the straight part
-/// (t > T_h) they cost no trigonometry. Every placement equals `maneuver_placement` bit for bit.
+/// the first time a (sample, sample time) pair is asked for, and kept in the ego's frame, where they
+/// depend only on the speed, the sample and the time: a restart with the same sample times keeps
+/// them (but the nominal-curvature columns'), and each access rotates one into the world. On the
+/// straight part (t > T_h) they cost no trigonometry. Every placement equals `maneuver_placement`
+/// bit for bit.
 ///
 /// The samples are also arranged in a tree of blocks (`block`): rectangles of neighbouring nodes of
 /// a grid, halved along their longer side down to single samples, with a bound on how far apart
@@ -71,11 +74,6 @@ class ego_sweep {
   /// `ego_sweep(ego, samples, window)`, without building the grids' blocks again. Throws
   /// std::invalid_argument when what must be unchanged changed.
   void restart(const ego_state& ego, const collision_window& window);
-  /// Frees the cache of placements (about a megabyte at the default resolution) until the next
-  /// `restart`: a sweep kept between planning steps holds only its blocks, speeds, the (stale)
-  /// straight parts of its samples and the placements' stamps. The sweep must not be asked for
-  /// placements before it is restarted.
-  void release_caches();
 
   const ego_state& ego() const { return ego_; }
   const maneuver_samples& samples() const { return samples_; }
@@ -88,9 +86,12 @@ class ego_sweep {
   /// Placement of sample m at time index k.
   placement at(std::size_t k, std::size_t m) const {
     const std::size_t index = placement_index(k, m);
-    if (known_[index] != generation_) fill(k, m);
-    const stored& p = placements_[index];
-    return {{p.px, p.py}, {p.dx, p.dy}};
+    if (local_known_[index] != local_generation_) fill(k, m);
+    // Into the world as `maneuver_placement` does (on the straight part `straight_part::direction`
+    // is the same rotation of the local direction): bit for bit `placement_at`.
+    const stored& p = local_[index];
+    return {ego_.pose.position + rotated(vec2{p.px, p.py}, start_rotation_.x, start_rotation_.y),
+            rotated(vec2{p.dx, p.dy}, start_rotation_.x, start_rotation_.y)};
   }
   /// Placement of sample m at any time t [s]: `maneuver_placement` bit for bit, cheaper on the
   /// straight part.
@@ -195,10 +196,16 @@ class ego_sweep {
   mutable std::vector<std::uint8_t> straight_known_;
   std::vector<double> sample_speed_;
   std::vector<double> sample_point_speed_;
-  mutable std::vector<std::uint8_t> known_;  ///< [placement_index]: `generation_` where cached
-  std::uint8_t generation_ = 0;                ///< the current start's stamp (1 to 255)
-  mutable std::unique_ptr<stored[]> placements_;
-  std::size_t placement_capacity_ = 0;  ///< entries allocated in `placements_`
+  /// The placements in the ego's frame, [placement_index], valid where `local_known_` holds
+  /// `local_generation_` (a new stamp per start with other sample times, 1 to 255): kept across
+  /// restarts with the same sample times, so the planning steps at one speed compute their
+  /// trigonometry once. About a megabyte at the default resolution, allocated uninitialised (only
+  /// the pages written are backed by memory).
+  mutable std::unique_ptr<stored[]> local_;
+  mutable std::vector<std::uint8_t> local_known_;
+  std::uint8_t local_generation_ = 0;
+  double local_time_step_ = 0.0;  ///< the window's time step and duration the local placements belong to
+  double local_duration_ = 0.0;
   std::size_t time_count_ = 0;          ///< `times_.size()`
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
