@@ -439,7 +439,8 @@ struct simulation::impl {
     return squared_norm(target_position - states[i].pose.position) < reach * reach;
   }
 
-  /// Each present agent within tracking range is observed, with noise; the others are forgotten.
+  /// Each present agent within tracking range is observed, with noise (into the pair's own ring) or
+  /// exactly (counted: the target's shared ring holds the observation); the others are forgotten.
   void sense(vehicle& v) {
     const agent_id i = id_of(v);
     const planning_vehicle& spec = *v.spec;
@@ -447,7 +448,6 @@ struct simulation::impl {
     const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
     const double lead = spec.planner.history_window + tracking_lead_time;
     const sensing_noise& noise = sc.noise;
-    const bool noisy = noise.position_sd > 0.0 || noise.heading_sd > 0.0 || noise.speed_sd > 0.0;
     for (agent_id j = 0; j < infos.size(); ++j) {
       if (j == i) continue;
       detail::observation_ring& ring = v.tracks[j];
@@ -468,13 +468,11 @@ struct simulation::impl {
         continue;
       }
       mm::observation o{now(), target.pose, target.speed};
-      if (noisy) {
-        double n[4];
-        v.noise[j].standard_normals(step, n);
-        o.pose.position = o.pose.position + vec2{noise.position_sd * n[0], noise.position_sd * n[1]};
-        o.pose.heading = wrap_angle(o.pose.heading + noise.heading_sd * n[2]);
-        o.speed += noise.speed_sd * n[3];
-      }
+      double n[4];
+      v.noise[j].standard_normals(step, n);
+      o.pose.position = o.pose.position + vec2{noise.position_sd * n[0], noise.position_sd * n[1]};
+      o.pose.heading = wrap_angle(o.pose.heading + noise.heading_sd * n[2]);
+      o.speed += noise.speed_sd * n[3];
       ring.push(o);
     }
   }
@@ -527,7 +525,7 @@ struct simulation::impl {
   /// (poses and speeds, which nothing changes here) and writes only its own runtime and its own
   /// command, so vehicles can be decided in any order, or in parallel.
   void decide() {
-    if (exact_sensing) {
+    if (exact_sensing && !vehicles.empty()) {
       // What every observer sees of each agent this step (`sense` then counts what it saw).
       for (agent_id j = 0; j < infos.size(); ++j) {
         const agent_state& target = states[j];

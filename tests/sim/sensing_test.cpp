@@ -187,6 +187,17 @@ TEST(sim_sensing, a_crashed_vehicle_keeps_the_tracks_it_had_when_it_crashed) {
   }
 }
 
+TEST(sim_sensing, a_scene_without_planning_vehicles_runs_with_exact_sensing) {
+  // Nothing observes: no shared observations are kept, and the run still goes to its end.
+  scenario s = watcher({}, 0);
+  s.planning_vehicles.clear();
+  s.duration = 0.5;
+  simulation sim(s);
+  while (!sim.ended()) sim.step();
+  EXPECT_NEAR(sim.time(), 0.5, 1e-9);
+  EXPECT_EQ(sim.planning_vehicle_count(), 0U);
+}
+
 TEST(sim_sensing, a_track_keeps_the_history_window_and_no_more) {
   simulation sim(watcher({}, 0));
   while (sim.time() < 2.0 - 1e-9) sim.step();
