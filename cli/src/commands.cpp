@@ -192,12 +192,13 @@ void append_fixed(fmt::memory_buffer& out, double value, int decimals = 6) {
   if (!std::isfinite(value)) return;
   // The longest fixed text of a finite double: 309 digits before the point, the point, the decimals.
   std::array<char, 330> text{};
-  const std::to_chars_result end =
-      std::to_chars(text.data(), text.data() + text.size(), value, std::chars_format::fixed, std::clamp(decimals, 0, 17));
+  const std::to_chars_result end = std::to_chars(text.data(), text.data() + text.size(), value,
+                                                 std::chars_format::fixed, std::clamp(decimals, 0, 17));
   const char* begin = text.data();
+  const char* last = end.ptr;
   // "-0.000" is written "0.000".
-  if (*begin == '-' && std::all_of(begin + 1, static_cast<const char*>(end.ptr), [](char c) { return c == '0' || c == '.'; })) ++begin;
-  out.append(begin, end.ptr);
+  if (*begin == '-' && std::all_of(begin + 1, last, [](char c) { return c == '0' || c == '.'; })) ++begin;
+  out.append(begin, last);
 }
 
 }  // namespace

@@ -89,7 +89,8 @@ void write_snapshot_json(std::ostream& out, const snapshot& shot, const scenario
 /// Where `maneuvermap snapshot --out FILE.csv` writes the JSON: FILE.json.
 std::filesystem::path snapshot_json_path(const std::filesystem::path& csv);
 
-/// A finite value with 6 decimals ("-0.000000" written as "0.000000"); "" when not finite.
+/// A finite value with 6 (or `decimals`, 0 to 17) decimals, correctly rounded ("-0.000000" written
+/// as "0.000000"); "" when not finite.
 std::string fixed(double value, int decimals = 6);
 
 }  // namespace mm::cli
