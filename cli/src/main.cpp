@@ -5,10 +5,12 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <thread>
 
 #include "mm/cli/commands.hpp"
 #include "mm/cli/plot.hpp"
@@ -104,7 +106,8 @@ int run_command(const scenario_options& o, const std::string& out, bool timing, 
   mm::cli::run_settings settings;
   settings.out_dir = out.empty() ? std::filesystem::path("out") / loaded.scenario.name : std::filesystem::path(out);
   settings.measure_cpu_time = timing;
-  settings.jobs = jobs;
+  // 0: every core, as `sweep` does (the outputs do not depend on it).
+  settings.jobs = jobs != 0 ? jobs : std::max(1U, std::thread::hardware_concurrency());
   settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
   const mm::cli::run_outcome outcome = mm::cli::run_scenario(loaded, settings);
   std::cout << fmt::format("{}: policy {}, seed {}, ended at t = {} s\n", loaded.scenario.name,
@@ -199,8 +202,9 @@ int main(int argc, char** argv) {
   run->add_option("--out", run_out, "Output directory (default out/<scenario name>)")->type_name("DIR");
   run->add_flag("--timing", timing, "Measure the CPU time of each planning step (outputs are then not reproducible)");
   bool run_plots = false;
-  std::size_t run_jobs = 1;
-  run->add_option("--jobs,-j", run_jobs, "Threads planning the vehicles of a step (outputs do not depend on it; default 1)")
+  std::size_t run_jobs = 0;
+  run->add_option("--jobs,-j", run_jobs,
+                  "Threads planning the vehicles of a step (outputs do not depend on it; default: the number of cores)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
       ->type_name("N");
   run->add_flag("--plots", run_plots, "Then draw the run's figures into its output directory (maneuvermap plot)");
