@@ -96,6 +96,11 @@ void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
 }
 
 void ego_sweep::start(const ego_state& ego, const collision_window& window, bool restarting) {
+  // The placements in the ego's frame depend only on the speed, the samples and the sample times
+  // (those of the previous start's window): a restart with the same times keeps them, except the
+  // nominal-curvature columns' (rewritten).
+  const bool same_times =
+      restarting && window.time_step == window_.time_step && window.duration == window_.duration;
   ego_ = ego;
   window_ = window;
   times_ = sample_times(window.duration, window.time_step);
@@ -116,12 +121,6 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, bool
     sample_speed_.push_back(v);
     sample_point_speed_.push_back(mm::largest_point_speed(v, u.curvature, ego_radius_));
   }
-  // The placements in the ego's frame depend only on the speed, the samples and the sample times:
-  // a restart with the same times keeps them, except the nominal-curvature columns' (rewritten).
-  const bool same_times = restarting && window.time_step == local_time_step_ && window.duration == local_duration_ &&
-                          times_.size() == time_count_;
-  local_time_step_ = window.time_step;
-  local_duration_ = window.duration;
   time_count_ = times_.size();
   const std::size_t placements = times_.size() * sample_count_;
   if (same_times) {
@@ -287,14 +286,16 @@ double ego_sweep::largest_acceleration(std::size_t k, std::size_t m) const {
 
 
 ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
-  const vec2 rotation = start_rotation_;
+  return in_world(local_placement_at(m, t));
+}
+
+ego_sweep::placement ego_sweep::local_placement_at(std::size_t m, double t) const {
   if (t > window_.horizon) {
+    // The arc's end moved along its direction.
     const straight_part& part = straight(m);
-    const vec2 local = part.local + (part.speed * (t - window_.horizon)) * part.along;
-    return {ego_.pose.position + rotated(local, rotation.x, rotation.y), part.direction};
+    return {part.local + (part.speed * (t - window_.horizon)) * part.along, part.along};
   }
-  return maneuver_placement(ego_.pose, rotation, ego_.speed, samples_.maneuvers[m], t, window_.horizon,
-                            ego_.limits.speed_cap);
+  return maneuver_local_placement(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
 }
 
 ego_sweep::line ego_sweep::straight_line(std::size_t m) const {
@@ -318,16 +319,7 @@ const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
 }
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {
-  // `placement_at`'s placement in the ego's frame: on the arc `maneuver_local_placement`, on the
-  // straight part the arc's end moved along its direction.
-  const double t = times_[k];
-  placement l;
-  if (t > window_.horizon) {
-    const straight_part& part = straight(m);
-    l = {part.local + (part.speed * (t - window_.horizon)) * part.along, part.along};
-  } else {
-    l = maneuver_local_placement(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
-  }
+  const placement l = local_placement_at(m, times_[k]);
   const std::size_t index = placement_index(k, m);
   local_[index] = {l.position.x, l.position.y, l.direction.x, l.direction.y};
   local_known_[index] = local_generation_;

@@ -78,11 +78,7 @@ std::array<std::span<const observation>, 2> observation_ring::segments() const {
   return {std::span(buffer_).subspan(head_, first), std::span(buffer_).first(size_ - first)};
 }
 
-void observation_ring::copy_to(std::vector<observation>& out) const {
-  out.clear();
-  out.reserve(size_);
-  for (const std::span<const observation> part : segments()) out.insert(out.end(), part.begin(), part.end());
-}
+void observation_ring::copy_to(std::vector<observation>& out) const { copy_last_to(size_, out); }
 
 void observation_ring::copy_last_to(std::size_t count, std::vector<observation>& out) const {
   out.clear();
@@ -107,9 +103,7 @@ double observation_ring::max_speed_of_last(std::size_t count) const {
   return 0.0;
 }
 
-double observation_ring::max_speed() const {
-  return maxima_size_ == 0 ? 0.0 : std::max(0.0, maxima_[maxima_head_].first);
-}
+double observation_ring::max_speed() const { return max_speed_of_last(size_); }
 
 double observation_ring::max_speed_by_scan() const {
   double fastest = 0.0;

@@ -87,11 +87,8 @@ class ego_sweep {
   placement at(std::size_t k, std::size_t m) const {
     const std::size_t index = placement_index(k, m);
     if (local_known_[index] != local_generation_) fill(k, m);
-    // Into the world as `maneuver_placement` does (on the straight part `straight_part::direction`
-    // is the same rotation of the local direction): bit for bit `placement_at`.
     const stored& p = local_[index];
-    return {ego_.pose.position + rotated(vec2{p.px, p.py}, start_rotation_.x, start_rotation_.y),
-            rotated(vec2{p.dx, p.dy}, start_rotation_.x, start_rotation_.y)};
+    return in_world({{p.px, p.py}, {p.dx, p.dy}});
   }
   /// Placement of sample m at any time t [s]: `maneuver_placement` bit for bit, cheaper on the
   /// straight part.
@@ -155,6 +152,14 @@ class ego_sweep {
 
  private:
   void fill(std::size_t k, std::size_t m) const;
+  /// Placement of sample m at time t [s] in the ego's frame: `maneuver_local_placement` bit for bit,
+  /// cheaper on the straight part.
+  placement local_placement_at(std::size_t m, double t) const;
+  /// A placement in the ego's frame moved into the world, as `maneuver_placement` does.
+  placement in_world(const placement& local) const {
+    return {ego_.pose.position + rotated(local.position, start_rotation_.x, start_rotation_.y),
+            rotated(local.direction, start_rotation_.x, start_rotation_.y)};
+  }
   /// Where the placement of sample m at time index k is cached: sample by sample, so that the
   /// walks of one sample over the window (exact values, floors) and a block's centre looked at on
   /// consecutive times read neighbouring memory.
@@ -204,8 +209,6 @@ class ego_sweep {
   mutable std::unique_ptr<stored[]> local_;
   mutable std::vector<std::uint8_t> local_known_;
   std::uint8_t local_generation_ = 0;
-  double local_time_step_ = 0.0;  ///< the window's time step and duration the local placements belong to
-  double local_duration_ = 0.0;
   std::size_t time_count_ = 0;          ///< `times_.size()`
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
