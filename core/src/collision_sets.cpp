@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -366,6 +367,16 @@ constexpr std::size_t second_order_steps = 2;
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                  std::span<const double> forecast_times, double cap,
                                  std::span<const std::uint8_t> wanted)
+    : clearance_field(sweep, obstacle, forecast_times, cap, wanted, nullptr) {}
+
+clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
+                                 std::span<const double> forecast_times, double cap,
+                                 std::span<const std::uint8_t> wanted, raster_scratch& scratch)
+    : clearance_field(sweep, obstacle, forecast_times, cap, wanted, &scratch) {}
+
+clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
+                                 std::span<const double> forecast_times, double cap,
+                                 std::span<const std::uint8_t> wanted, raster_scratch* reused)
     : sweep_(sweep),
       obstacle_(obstacle),
       taus_(forecast_times.begin(), forecast_times.end()),
@@ -438,11 +449,13 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     return gap > 0.0;
   };
   const std::vector<std::uint32_t>& order = sweep.order();
-  raster_state shared{sample_mask(samples), std::vector<std::uint32_t>(times.size(), raster_state::none),
-                      std::vector<std::uint32_t>(sweep.blocks().size(), raster_state::none)};
+  std::optional<raster_scratch> own_scratch;
+  raster_scratch& scratch = reused != nullptr ? *reused : own_scratch.emplace();
+  raster_state& shared = scratch.shared_;
+  shared.reset(samples, times.size(), sweep.blocks().size());
   for (const std::uint32_t root : sweep.roots()) shared.wait(0, root);
   std::size_t shared_done = 0;
-  raster_state own;
+  raster_state& own = scratch.own_;
   // A slot is computed when a forecast time it serves is wanted (every one shares slot 0 without a turn).
   const auto slot_wanted = [&](std::size_t i) {
     if (!independent_) return evaluated(i);
@@ -499,6 +512,12 @@ void clearance_field::raster(std::size_t k, const obstacle_at& o, raster_state& 
     raster_block(j, k, at, state);
     j = after;
   }
+}
+
+void clearance_field::raster_state::reset(std::size_t samples, std::size_t times, std::size_t blocks) {
+  hit.clear(samples);
+  head.assign(times, none);
+  if (link.size() < blocks) link.resize(blocks);
 }
 
 void clearance_field::raster_state::wait(std::size_t k, std::uint32_t block) {

@@ -53,8 +53,8 @@ class evaluator {
   /// Fast path: the clearance field of the next obstacle, computing the forecast times `wanted`
   /// (empty: every one).
   void add_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> taus,
-                 std::span<const std::uint8_t> wanted) {
-    fields_.emplace_back(sweep, obstacle, taus, clearance_cap, wanted);
+                 std::span<const std::uint8_t> wanted, clearance_field::raster_scratch& scratch) {
+    fields_.emplace_back(sweep, obstacle, taus, clearance_cap, wanted, scratch);
   }
 
   /// A buffer for a column that is not kept.
@@ -467,6 +467,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   }
   const maneuver_samples& samples = reuse ? cache->samples : *fresh;
   evaluator evaluate(samples, options.reference);
+  std::optional<clearance_field::raster_scratch> own_raster;
+  clearance_field::raster_scratch& raster = reuse ? cache->raster : own_raster.emplace();
 
   // TTC per obstacle (spec §6): obstacle j may be forecast with τ_i ≤ TTC_j (and always τ_0 = 0).
   std::vector<double> ttc(n, no_collision);
@@ -533,7 +535,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       }
       evaluate.add_reference(std::move(sets));
     } else {
-      evaluate.add_field(*sweep, relevant[j], taus, wanted_of(j));
+      evaluate.add_field(*sweep, relevant[j], taus, wanted_of(j), raster);
     }
   }
 

@@ -34,6 +34,7 @@ inline constexpr double verification_resolution = 1e-3;
 struct planning_cache {
   maneuver_samples samples;      ///< without node weights and end points (what the fast path reads)
   std::optional<ego_sweep> sweep;  ///< on `samples`
+  clearance_field::raster_scratch raster;  ///< the clearance fields' working memory, reused by every step
 
   /// True when `samples` were sampled for this speed, limits, footprint radius, horizon and resolution.
   bool holds(const ego_state& ego, double horizon, const sampling_resolution& resolution) const;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <cstdio>
 #include <stdexcept>
@@ -110,6 +111,42 @@ TEST(collision_sets, the_raster_finds_exactly_the_samples_that_overlap_at_a_samp
   });
   EXPECT_GT(colliding, 0u);
   std::printf("sampled collisions: %zu, contacts only between sample times: %zu\n", colliding, between_samples);
+}
+
+TEST(collision_sets, a_field_rastered_in_reused_scratch_equals_a_fresh_one_bit_for_bit) {
+  // One scratch for every field of every trial, whose sweeps differ in size (the grid alternates),
+  // and whose wanted forecast times vary: nothing of an earlier field may leak into a later one.
+  constexpr double cap = 2.0;
+  std::mt19937_64 rng(testing::property_seed() + 23);
+  const std::vector<double> taus = forecast_times(planner_config{});
+  const std::array<sampling_resolution, 3> grids{{{7, 9}, {5, 5}, {9, 13}}};
+  clearance_field::raster_scratch scratch;
+  std::size_t colliding = 0;
+  for (std::size_t trial = 0; trial < testing::property_count(12); ++trial) {
+    plan_input in = two_obstacle_scene(rng, trial);
+    in.config.resolution = grids[trial % grids.size()];
+    const prepared p = prepare(in, 0.05);
+    const ego_sweep sweep(in.ego, p.samples, p.window);
+    std::vector<std::uint8_t> wanted(taus.size(), 1);
+    if (trial % 2 == 1) {
+      for (std::size_t i = 0; i < wanted.size(); ++i) wanted[i] = (i + trial) % 3 == 0 ? 1 : 0;
+    }
+    for (const forecast_obstacle& obstacle : p.obstacles) {
+      clearance_field reused(sweep, obstacle, taus, cap, wanted, scratch);
+      clearance_field fresh(sweep, obstacle, taus, cap, wanted);
+      ASSERT_EQ(reused.inert(), fresh.inert()) << testing::describe(in);
+      for (std::size_t i = 0; i < taus.size(); ++i) {
+        if (!fresh.evaluated(i)) continue;
+        ASSERT_EQ(reused.sampled_collisions(i), fresh.sampled_collisions(i))
+            << "trial " << trial << " tau " << taus[i] << "\n" << testing::describe(in);
+        colliding += fresh.sampled_collisions(i).count();
+        for (std::size_t m = 0; m < p.samples.size(); ++m) {
+          ASSERT_EQ(reused.exact(i, m), fresh.exact(i, m)) << "trial " << trial << " tau " << taus[i] << " sample " << m;
+        }
+      }
+    }
+  }
+  EXPECT_GT(colliding, 0u);
 }
 
 TEST(collision_sets, a_bounded_query_is_exact_below_its_ceiling_and_never_hides_a_lower_clearance) {

@@ -257,6 +257,14 @@ class clearance_field {
   clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
                   double cap, std::span<const std::uint8_t> wanted = {});
 
+  /// Working memory of the raster, reused from one field to the next (its contents are not
+  /// carried over: a field built with one equals a field built without, bit for bit). Saves
+  /// every field's allocation and initialisation of a list link per block of the sweep.
+  class raster_scratch;
+  /// The same, rastering in `scratch`, which no other field may use at the same time.
+  clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
+                  double cap, std::span<const std::uint8_t> wanted, raster_scratch& scratch);
+
   std::size_t forecast_count() const { return taus_.size(); }
   /// True when the set of forecast time i was computed (`wanted`).
   bool evaluated(std::size_t i) const { return wanted_.empty() || wanted_[i] != 0; }
@@ -301,6 +309,8 @@ class clearance_field {
   const work& statistics() const { return work_; }
 
  private:
+  clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
+                  double cap, std::span<const std::uint8_t> wanted, raster_scratch* reused);
   /// An obstacle's placement: reference point [m] and heading direction (cos, sin).
   using obstacle_at = placement;
   /// Where the set of forecast time i is kept: 0 for all when the forecasts do not depend on τ.
@@ -338,7 +348,10 @@ class clearance_field {
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
     sample_mask hit;
     std::vector<std::uint32_t> head;  ///< [k]: first block waiting for time index k
-    std::vector<std::uint32_t> link;  ///< [block]: the next in the same list
+    std::vector<std::uint32_t> link;  ///< [block]: the next in the same list (read only for blocks in a list)
+    /// No sample hit, every list empty, for `samples` samples, `times` time indices and `blocks`
+    /// blocks; keeps the buffers' memory (`link` is written before it is read, so not cleared).
+    void reset(std::size_t samples, std::size_t times, std::size_t blocks);
     /// Block `block` waits for time index k (past the last time: it is done).
     void wait(std::size_t k, std::uint32_t block);
     /// Empties the list of time index k and returns its first block.
@@ -428,6 +441,12 @@ class clearance_field {
   };
   std::vector<refined_entry> refined_;       ///< every sample's refined minima, as lists
   std::vector<std::uint32_t> refined_head_;  ///< [m]: sample m's last refined minimum, or `none` (allocated on first use)
+};
+
+class clearance_field::raster_scratch {
+  friend class clearance_field;
+  raster_state shared_;
+  raster_state own_;
 };
 
 /// The sampled collision sets of one obstacle for every forecast time, by brute force (the

@@ -14,6 +14,12 @@ class sample_mask {
   sample_mask() = default;
   explicit sample_mask(std::size_t size) : size_(size), words_((size + 63) / 64, 0) {}
 
+  /// Every sample cleared, `size` of them, keeping the memory.
+  void clear(std::size_t size) {
+    size_ = size;
+    words_.assign((size + 63) / 64, 0);
+  }
+
   std::size_t size() const { return size_; }
   bool test(std::size_t i) const { return (words_[i / 64] >> (i % 64)) & 1U; }
   void set(std::size_t i) { words_[i / 64] |= std::uint64_t{1} << (i % 64); }
