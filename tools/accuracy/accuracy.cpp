@@ -11,23 +11,18 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mm/reference_planner.hpp"
+#include "mm/tool_cli.hpp"
 #include "random_scenes.hpp"
 
 namespace {
-
-double argument(int argc, char** argv, const char* name, double fallback) {
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) return std::atof(argv[i + 1]);
-  }
-  return fallback;
-}
 
 /// Margin between the best and the second-best candidate of ADJ (by forecast time).
 double adj_margin(const mm::plan_result& r) {
@@ -38,7 +33,6 @@ double adj_margin(const mm::plan_result& r) {
   std::sort(rooms.rbegin(), rooms.rend());
   return rooms.size() < 2 ? 1.0 : rooms[0] - rooms[1];
 }
-
 
 struct fast_setting {
   mm::sampling_resolution resolution;
@@ -52,55 +46,76 @@ struct fast_setting {
   std::size_t only_fast = 0;        ///< colliding for the fast planner only
 };
 
-/// "11x15@0.05,21x21@0.02" → settings.
-std::vector<fast_setting> parse_settings(const std::string& text) {
+constexpr std::uint64_t max_grid_nodes = 2001;  ///< the planner's bound on a grid's side (config.resolution)
+
+/// One AxC@DT entry of --fast: none when malformed or out of range.
+std::optional<fast_setting> parse_setting(std::string_view item) {
+  const std::size_t by = item.find('x');
+  const std::size_t at = item.find('@');
+  if (by == std::string_view::npos || at == std::string_view::npos || at < by) return std::nullopt;
+  const auto a = mm::tool_cli::parse_whole(item.substr(0, by));
+  const auto c = mm::tool_cli::parse_whole(item.substr(by + 1, at - by - 1));
+  const auto dt = mm::tool_cli::parse_real(item.substr(at + 1));
+  if (!a || !c || !dt || *a < 2 || *a > max_grid_nodes || *c < 1 || *c > max_grid_nodes || !(*dt > 0.0)) {
+    return std::nullopt;
+  }
+  return fast_setting{{static_cast<std::size_t>(*a), static_cast<std::size_t>(*c)}, *dt, 0.0, {}, 0, 0.0, 0, 0, 0};
+}
+
+/// "11x15@0.05,21x21@0.02" → settings; the error names the first bad entry.
+std::vector<fast_setting> parse_settings(std::string_view text, std::string* error = nullptr) {
   std::vector<fast_setting> settings;
   std::size_t start = 0;
-  while (start < text.size()) {
+  for (std::size_t index = 1;; ++index) {
     const std::size_t end = std::min(text.find(',', start), text.size());
-    const std::string item = text.substr(start, end - start);
-    unsigned a = 0;
-    unsigned c = 0;
-    double dt = 0.0;
-    if (std::sscanf(item.c_str(), "%ux%u@%lf", &a, &c, &dt) != 3) {
-      std::fprintf(stderr, "bad setting '%s', expected AxC@DT\n", item.c_str());
-      std::exit(2);
+    const std::string_view item = text.substr(start, end - start);
+    std::optional<fast_setting> setting = parse_setting(item);
+    if (!setting) {
+      if (error != nullptr) {
+        *error = "entry " + std::to_string(index) + " '" + std::string(item) + "' of '" + std::string(text) +
+                 "': expected AxC@DT, A accelerations from 2 to 2001, C curvatures from 1 to 2001, "
+                 "DT a time step > 0 [s], e.g. 11x15@0.05";
+      }
+      return {};
     }
-    fast_setting setting{{a, c}, dt, 0.0, {}, 0, 0.0, 0, 0, 0};
-    settings.push_back(std::move(setting));
+    settings.push_back(std::move(*setting));
+    if (end == text.size()) return settings;
     start = end + 1;
   }
-  return settings;
 }
 
-const char* text_argument(int argc, char** argv, const char* name, const char* fallback) {
-  for (int i = 1; i + 1 < argc; ++i) {
-    if (std::strcmp(argv[i], name) == 0) return argv[i + 1];
-  }
-  return fallback;
+CLI::Validator fast_settings() {
+  return CLI::Validator(
+      [](std::string& text) {
+        std::string error;
+        parse_settings(text, &error);
+        return error;
+      },
+      "");
 }
 
-}  // namespace
+/// The command line; the defaults are the tool's.
+struct accuracy_options {
+  std::size_t scenes = 50;
+  std::uint64_t seed = 1;
+  mm::testing::scene_options scene;
+  std::string fast = "11x15@0.05";
+  mm::reference_resolution reference{{41, 121}, 1e-4};
+  /// "fast": the "reference" is the fast planner at the reference grid and `reference_time_step`
+  /// (bit-identical to the reference engine at equal settings, and much cheaper): for convergence studies.
+  std::string engine = "reference";
+  double reference_time_step = 0.005;
+  bool signs = false;
+};
 
-int main(int argc, char** argv) {
-  const auto scenes = static_cast<std::size_t>(argument(argc, argv, "--scenes", 50));
-  const auto seed = static_cast<std::uint64_t>(argument(argc, argv, "--seed", 1));
-  mm::testing::scene_options options;
-  options.obstacles = static_cast<std::size_t>(argument(argc, argv, "--obstacles", 1));
-  options.sensor_noise = argument(argc, argv, "--noise", 0) != 0;
-  std::vector<fast_setting> settings = parse_settings(text_argument(argc, argv, "--fast", "11x15@0.05"));
-  mm::reference_resolution reference{
-      {static_cast<std::size_t>(argument(argc, argv, "--ref-accelerations", 41)),
-       static_cast<std::size_t>(argument(argc, argv, "--ref-curvatures", 121))},
-      argument(argc, argv, "--ref-proof-resolution", 1e-4)};
-  // With --ref-engine fast, the "reference" is the fast planner at the reference grid and this time step.
-  const double fast_reference_step = argument(argc, argv, "--ref-time-step", 0.005);
-
-  // --ref-engine fast: compute the "reference" with the fast path at the reference resolution
-  // (bit-identical to the reference engine at equal settings, and much cheaper): for convergence studies.
-  const bool fast_reference = std::strcmp(text_argument(argc, argv, "--ref-engine", "reference"), "fast") == 0;
-  const bool signs = argument(argc, argv, "--signs", 0) != 0;
-  std::mt19937_64 rng(seed);
+int measure(const accuracy_options& o) {
+  const std::size_t scenes = o.scenes;
+  const mm::testing::scene_options& options = o.scene;
+  const mm::reference_resolution& reference = o.reference;
+  std::vector<fast_setting> settings = parse_settings(o.fast);
+  const bool fast_reference = o.engine == "fast";
+  const bool signs = o.signs;
+  std::mt19937_64 rng(o.seed);
   std::size_t interacting = 0;
   double reference_seconds = 0.0;
   for (std::size_t s = 0; s < scenes; ++s) {
@@ -110,7 +125,7 @@ int main(int argc, char** argv) {
     if (fast_reference) {
       mm::plan_input fine = in;
       fine.config.resolution = reference.sampling;
-      fine.config.max_time_step = fast_reference_step;
+      fine.config.max_time_step = o.reference_time_step;
       r = mm::plan(fine);
     } else {
       r = mm::plan_reference(in, reference);
@@ -178,4 +193,51 @@ int main(int argc, char** argv) {
     }
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace cli = mm::tool_cli;
+  accuracy_options o;
+  CLI::App app{"Measures the fast planner against the reference planner (spec §11) on random scenes: the largest\n"
+               "|MI_fast - MI_reference| over forecast times and families, and whether the forecast time and the\n"
+               "family agree where the reference's two best candidates differ by more than 0.02.\n",
+               "maneuvermap_accuracy"};
+  cli::add_whole(app, "--scenes", o.scenes, 1, cli::unbounded, "Random scenes to plan (>= 1)");
+  cli::add_whole(app, "--seed", o.seed, 0, cli::unbounded, "Seed of the random scenes", "S");
+  cli::add_whole(app, "--obstacles", o.scene.obstacles, 1, cli::unbounded, "Moving obstacles per scene (>= 1)", "K");
+  cli::add_whole(app, "--noise", o.scene.sensor_noise, 0, 1, "1: Gaussian sensor noise on the obstacles' histories",
+                 "0|1");
+  app.add_option("--fast", o.fast,
+                 "Fast settings to measure, comma-separated: A accelerations (2 to 2001) x C curvatures (1 to 2001) "
+                 "per family @ time step DT [s] (> 0)")
+      ->check(fast_settings())
+      ->type_name("AxC@DT,...")
+      ->capture_default_str();
+  cli::add_whole(app, "--ref-accelerations", o.reference.sampling.accelerations, 2, max_grid_nodes,
+                 "Reference grid: accelerations per family (2 to 2001)", "A");
+  cli::add_whole(app, "--ref-curvatures", o.reference.sampling.curvatures, 1, max_grid_nodes,
+                 "Reference grid: curvatures (1 to 2001)", "C");
+  cli::add_real(app, "--ref-proof-resolution", o.reference.proof_resolution, cli::real_bound::positive, "s",
+                "Time resolution of the reference's continuous-time collision proof [s] (> 0)", "S");
+  app.add_option("--ref-engine", o.engine,
+                 "reference: the reference planner; fast: the fast planner at the reference grid and "
+                 "--ref-time-step (much cheaper, for convergence studies)")
+      ->check(CLI::IsMember({"fast", "reference"}))
+      ->type_name("ENGINE")
+      ->capture_default_str();
+  CLI::Option* time_step =
+      cli::add_real(app, "--ref-time-step", o.reference_time_step, cli::real_bound::positive, "s",
+                    "Time step of the fast engine as the reference [s] (> 0; with --ref-engine fast only)", "DT");
+  cli::add_whole(app, "--signs", o.signs, 0, 1,
+                 "1: also count, per fast setting, the (sample, forecast time) pairs that collide for the reference "
+                 "at the same grid and those the fast planner misses",
+                 "0|1");
+  return cli::run(app, argc, argv, [&] {
+    if (time_step->count() > 0 && o.engine != "fast") {
+      throw CLI::ValidationError("--ref-time-step", "used only with --ref-engine fast");
+    }
+    return measure(o);
+  });
 }

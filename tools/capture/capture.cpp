@@ -14,12 +14,12 @@
 // among the plans that still find a safe maneuver (mode other than near_crash). With --save it
 // writes the planning input of NAME at time T instead (the benchmarks' replay of that instant,
 // `mm::capture::replay`), as JSON that `maneuvermap_replan` plans on without the simulation.
-#include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <fstream>
 #include <map>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -27,6 +27,7 @@
 #include "mm/sim/simulation.hpp"
 #include "mm/capture.hpp"
 #include "mm/plan_input_json.hpp"
+#include "mm/tool_cli.hpp"
 
 namespace {
 
@@ -37,64 +38,61 @@ struct strongest {
   std::size_t relevant = 0;
 };
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]\n"
-                         "       maneuvermap_capture SCENARIO --agent NAME [--set NAME=VALUE]... --at T --save FILE.json\n");
-    return 2;
-  }
+/// The command line; the defaults are the tool's.
+struct capture_options {
+  std::string scenario;
   std::string agent;
+  std::vector<std::string> overrides;
   std::size_t every = 1;
-  bool summary = false;
   double from = 0.0;
-  double at = -1.0;
+  std::optional<double> at;
   std::string save;
+  bool summary = false;
+};
+
+CLI::Validator parameter_override() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (mm::scenario_file::parse_override(text)) return {};
+        return "expected NAME=VALUE with a finite number VALUE, got '" + text + "'";
+      },
+      "");
+}
+
+/// Throws when --agent is not a planning vehicle of `sim`, naming the ones there are.
+void check_agent(const mm::sim::simulation& sim, const capture_options& o) {
+  const auto id = sim.find(o.agent);
+  if (id && *id < sim.planning_vehicle_count()) return;
+  std::string names;
+  for (mm::sim::agent_id i = 0; i < sim.planning_vehicle_count(); ++i) {
+    names += (names.empty() ? "" : ", ") + sim.info(i).name;
+  }
+  throw std::runtime_error("--agent " + o.agent + ": no planning vehicle of that name in " + o.scenario +
+                           " (expected one of: " + names + ")");
+}
+
+/// --save: writes the planning input of the agent at --at as JSON.
+int save_input(const capture_options& o, const mm::scenario_file::load_options& options) {
+  check_agent(mm::sim::simulation(mm::scenario_file::load(o.scenario, options).scenario), o);
+  const mm::plan_input input = mm::capture::replay({o.scenario, options.overrides, o.agent, *o.at});
+  std::ofstream file(o.save);
+  file << mm::capture::to_json(input).dump(1) << "\n";
+  if (!file) throw std::runtime_error("--save " + o.save + ": cannot write the file");
+  std::printf("%s: the planning input of %s at %.2f s (%zu obstacles)\n", o.save.c_str(), o.agent.c_str(), input.time,
+              input.obstacles.size());
+  return 0;
+}
+
+int capture(const capture_options& o) {
   mm::scenario_file::load_options options;
-  for (int i = 2; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--agent" && i + 1 < argc) {
-      agent = argv[++i];
-    } else if (arg == "--every" && i + 1 < argc) {
-      every = static_cast<std::size_t>(std::max(1, std::atoi(argv[++i])));
-    } else if (arg == "--from" && i + 1 < argc) {
-      from = std::atof(argv[++i]);
-    } else if (arg == "--at" && i + 1 < argc) {
-      at = std::atof(argv[++i]);
-    } else if (arg == "--save" && i + 1 < argc) {
-      save = argv[++i];
-    } else if (arg == "--summary") {
-      summary = true;
-    } else if (arg == "--set" && i + 1 < argc) {
-      const auto o = mm::scenario_file::parse_override(argv[++i]);
-      if (!o) {
-        std::fprintf(stderr, "bad --set %s\n", argv[i]);
-        return 2;
-      }
-      options.overrides.push_back(*o);
-    } else {
-      std::fprintf(stderr, "unknown argument %s\n", arg.c_str());
-      return 2;
-    }
-  }
-  if (!save.empty()) {
-    if (agent.empty() || at < 0.0) {
-      std::fprintf(stderr, "--save needs --agent NAME and --at T (T >= 0)\n");
-      return 2;
-    }
-    const mm::plan_input input = mm::capture::replay({argv[1], options.overrides, agent, at});
-    std::ofstream file(save);
-    file << mm::capture::to_json(input).dump(1) << "\n";
-    if (!file) {
-      std::fprintf(stderr, "%s: cannot write\n", save.c_str());
-      return 1;
-    }
-    std::printf("%s: the planning input of %s at %.2f s (%zu obstacles)\n", save.c_str(), agent.c_str(), input.time,
-                input.obstacles.size());
-    return 0;
-  }
-  mm::sim::simulation sim(mm::scenario_file::load(argv[1], options).scenario, mm::capture::every_core());
+  for (const std::string& text : o.overrides) options.overrides.push_back(*mm::scenario_file::parse_override(text));
+  if (!o.save.empty()) return save_input(o, options);
+  const std::string& agent = o.agent;
+  const std::size_t every = o.every;
+  const bool summary = o.summary;
+  const double from = o.from;
+  mm::sim::simulation sim(mm::scenario_file::load(o.scenario, options).scenario, mm::capture::every_core());
+  if (!agent.empty()) check_agent(sim, o);
   std::map<std::size_t, strongest> by_interacting;
   std::size_t plans = 0;
   if (!summary) std::printf("t_s,agent,obstacles,relevant,interacting,min_room,mode,cpu_us\n");
@@ -124,4 +122,43 @@ int main(int argc, char** argv) {
     std::printf("# %zu,%.2f,%s,%zu,%.4f\n", n, b.time, b.agent.c_str(), b.relevant, b.room);
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  namespace cli = mm::tool_cli;
+  capture_options o;
+  CLI::App app{"Runs a scenario and prints, for every plan of its planning vehicles (or of --agent), the time, the\n"
+               "obstacles handed to the planner, how many are relevant and how many interact, the smallest room\n"
+               "max(MI-, MI+), the planning mode and the planner's CPU time [us]. With --save, writes the planning\n"
+               "input of --agent at --at as JSON instead (for maneuvermap_replan and the benchmarks).\n",
+               "maneuvermap_capture"};
+  app.footer("Forms:\n"
+             "  maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]\n"
+             "  maneuvermap_capture SCENARIO --agent NAME [--set NAME=VALUE]... --at T --save FILE.json");
+  app.add_option("SCENARIO", o.scenario, "Scenario file, or the name of a built-in scenario (maneuvermap list)")
+      ->required()
+      ->type_name("FILE|NAME");
+  app.add_option("--agent", o.agent, "Only the plans of this planning vehicle")->type_name("NAME");
+  app.add_option("--set", o.overrides, "Override a parameter of the scenario: NAME=VALUE (repeatable)")
+      ->check(parameter_override())
+      ->allow_extra_args(false)
+      ->type_name("NAME=VALUE");
+  CLI::Option* every =
+      cli::add_whole(app, "--every", o.every, 1, cli::unbounded, "Print every K-th plan only (>= 1)", "K");
+  CLI::Option* from =
+      cli::add_real(app, "--from", o.from, cli::real_bound::non_negative, "s",
+                    "Look only at plans from this time on [s] (>= 0; the run before is simulated, not counted)", "T");
+  CLI::Option* summary = app.add_flag("--summary", o.summary,
+                                      "Print only, per number of interacting obstacles, the plan of least room among "
+                                      "those that find a safe maneuver (mode other than near_crash)");
+  CLI::Option* at = cli::add_real(app, "--at", o.at, cli::real_bound::non_negative, "s",
+                                  "With --save: the time of the planning input [s] (>= 0)", "T");
+  CLI::Option* save = app.add_option("--save", o.save,
+                                     "Write the planning input of --agent at --at to this JSON file instead")
+                          ->type_name("FILE.json");
+  save->needs("--agent")->needs(at)->excludes(every)->excludes(from)->excludes(summary);
+  at->needs(save);
+  return cli::run(app, argc, argv, [&] { return capture(o); });
 }

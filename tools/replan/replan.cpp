@@ -6,13 +6,14 @@
 //   valgrind --tool=callgrind --toggle-collect='*plan_repeatedly*' maneuvermap_replan FILE.json --repeat 1
 //
 // (the count of the `plan_repeatedly` frame, divided by N, is what docs/performance.md reports).
+#include <climits>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <fstream>
+#include <stdexcept>
 #include <string>
 
 #include "mm/plan_input_json.hpp"
+#include "mm/tool_cli.hpp"
 
 namespace {
 
@@ -26,40 +27,19 @@ namespace {
   return sum;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::fprintf(stderr, "usage: maneuvermap_replan FILE.json [--repeat N]\n");
-    return 2;
-  }
-  int repeat = 0;
-  for (int i = 2; i < argc; ++i) {
-    if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) {
-      repeat = std::atoi(argv[++i]);
-    } else {
-      std::fprintf(stderr, "unknown argument %s\n", argv[i]);
-      return 2;
-    }
-  }
-  std::ifstream file(argv[1]);
-  if (!file) {
-    std::fprintf(stderr, "%s: cannot read\n", argv[1]);
-    return 2;
-  }
+int replan(const std::string& path, int repeat) {
+  std::ifstream file(path);
+  if (!file) throw std::runtime_error(path + ": cannot read the file");
   mm::plan_input input;
   try {
     input = mm::capture::plan_input_from_json(nlohmann::json::parse(file));
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "%s: %s\n", argv[1], e.what());
-    return 2;
+    throw std::runtime_error(path + ": " + e.what() +
+                             " (expected a planning input saved by maneuvermap_capture --save)");
   }
   if (repeat > 0) plan_repeatedly(input, repeat);
   const mm::plan_result r = mm::plan(input);
-  if (!r.ok()) {
-    std::fprintf(stderr, "%s: %s\n", argv[1], r.error.c_str());
-    return 2;
-  }
+  if (!r.ok()) throw std::runtime_error(path + ": " + r.error);
   std::printf("forecast_time %.3f family %s command %.6f %.6f mode %s\n", r.forecast_time,
               std::string(mm::to_string(r.selected_family)).c_str(), r.command.acceleration, r.command.curvature,
               std::string(mm::to_string(r.mode)).c_str());
@@ -70,4 +50,22 @@ int main(int argc, char** argv) {
                 r.excluded[i] ? " excluded" : "");
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string path;
+  int repeat = 0;
+  CLI::App app{"Plans on a planning input saved by maneuvermap_capture --save, without the simulation: prints the\n"
+               "result's forecast time, command, work counts and map column. With --repeat N it first plans N times\n"
+               "in plan_repeatedly, for instruction counts with callgrind:\n"
+               "  valgrind --tool=callgrind --toggle-collect='*plan_repeatedly*' \\\n"
+               "    maneuvermap_replan FILE.json --repeat 1\n",
+               "maneuvermap_replan"};
+  app.add_option("FILE.json", path, "Planning input saved by maneuvermap_capture --save")
+      ->required()
+      ->check(CLI::ExistingFile);
+  mm::tool_cli::add_whole(app, "--repeat", repeat, 0, INT_MAX, "Plan this many times in plan_repeatedly first (>= 0)");
+  return mm::tool_cli::run(app, argc, argv, [&] { return replan(path, repeat); });
 }
