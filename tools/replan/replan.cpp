@@ -2,16 +2,20 @@
 // result's forecast time, command, work counts and map column, and with --repeat N plans N times in
 // `plan_repeatedly`, so that instruction counts of one planning step can be taken with callgrind:
 //
-//   maneuvermap_replan FILE.json [--repeat N]
+//   maneuvermap_replan FILE.json [--repeat N] [--fields N]
 //   valgrind --tool=callgrind --toggle-collect='*plan_repeatedly*' maneuvermap_replan FILE.json --repeat 1
 //
 // (the count of the `plan_repeatedly` frame, divided by N, is what docs/performance.md reports).
+// --fields N builds the clearance field of every relevant obstacle N times and prints its mean time.
+#include <chrono>
 #include <climits>
 #include <cstdio>
 #include <fstream>
 #include <stdexcept>
 #include <string>
 
+#include "mm/collision_sets.hpp"
+#include "mm/maneuver_samples.hpp"
 #include "mm/plan_input_json.hpp"
 #include "mm/tool_cli.hpp"
 
@@ -27,7 +31,42 @@ namespace {
   return sum;
 }
 
-int replan(const std::string& path, int repeat) {
+/// The clearance field of every relevant obstacle of `input`, as the plan `r` built it (its sampled
+/// sets, collision window and forecast times), built `count` times: prints the obstacle's id,
+/// distance [m], speed [m/s] and yaw rate [rad/s], the mean construction time [µs], whether it is
+/// inert, and its sampled collisions summed over the forecast times. The first build also places the
+/// ego's maneuvers (the sweep keeps them), as the plan's first field does.
+void time_fields(const mm::plan_input& input, const mm::plan_result& r, int count) {
+  constexpr double clearance_cap = 2.0;  // [m], the planner's (core/src/pipeline.hpp)
+  const mm::planner_config& config = input.config;
+  const mm::maneuver nominal = mm::clamp_to_limits(input.nominal, input.ego.speed, input.ego.limits);
+  const mm::maneuver_samples samples =
+      mm::sample_maneuvers(input.ego, nominal.curvature, config.displacement_horizon, config.resolution, false, false);
+  const mm::collision_window window{config.displacement_horizon, config.collision_window, r.collision_time_step,
+                                    config.safety_margin};
+  const mm::ego_sweep sweep(input.ego, samples, window);
+  mm::clearance_field::raster_scratch scratch;
+  for (std::size_t j = 0; j < input.obstacles.size(); ++j) {
+    if (!r.obstacles[j].relevant) continue;
+    const mm::forecast_obstacle obstacle{r.obstacles[j].motion, input.obstacles[j].shape};
+    bool inert = false;
+    std::size_t collisions = 0;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < count; ++i) {
+      const mm::clearance_field field(sweep, obstacle, r.forecast_times, clearance_cap, {}, scratch);
+      inert = field.inert();
+      collisions = 0;
+      for (std::size_t f = 0; f < r.forecast_times.size(); ++f) collisions += field.sampled_collisions(f).count();
+    }
+    const std::chrono::duration<double, std::micro> elapsed = std::chrono::steady_clock::now() - start;
+    std::printf("field %u distance %.1f speed %.2f yaw_rate %.3f us %.1f inert %d sampled_collisions %zu\n",
+                static_cast<unsigned>(input.obstacles[j].id),
+                mm::norm(obstacle.motion.pose.position - input.ego.pose.position), obstacle.motion.speed,
+                obstacle.motion.yaw_rate, elapsed.count() / count, inert ? 1 : 0, collisions);
+  }
+}
+
+int replan(const std::string& path, int repeat, int fields) {
   std::ifstream file(path);
   if (!file) throw std::runtime_error(path + ": cannot read the file");
   mm::plan_input input;
@@ -49,6 +88,7 @@ int replan(const std::string& path, int repeat) {
     std::printf("tau %.3f mi_brake %.4f mi_accelerate %.4f%s\n", r.forecast_times[i], r.mi_brake[i], r.mi_accelerate[i],
                 r.excluded[i] ? " excluded" : "");
   }
+  if (fields > 0) time_fields(input, r, fields);
   return 0;
 }
 
@@ -67,5 +107,9 @@ int main(int argc, char** argv) {
       ->required()
       ->check(CLI::ExistingFile);
   mm::tool_cli::add_whole(app, "--repeat", repeat, 0, INT_MAX, "Plan this many times in plan_repeatedly first (>= 0)");
-  return mm::tool_cli::run(app, argc, argv, [&] { return replan(path, repeat); });
+  int fields = 0;
+  mm::tool_cli::add_whole(app, "--fields", fields, 0, INT_MAX,
+                          "Also build the clearance field of every relevant obstacle this many times and print its "
+                          "mean time [us], whether it is inert and its sampled collisions (>= 0)");
+  return mm::tool_cli::run(app, argc, argv, [&] { return replan(path, repeat, fields); });
 }
