@@ -98,7 +98,8 @@ struct planning_cache;
 /// `mm::plan(input)` returns, bit for bit, and reuses what the previous call sampled when the ego's
 /// speed, limits and footprint radius, the displacement horizon and the resolution are unchanged —
 /// as they are while a vehicle cruises at a steady speed: the sampled displacement sets [AS−], [AS+]
-/// (spec §3, whose cell areas cost a few thousand sines) and the ego's tree of maneuver blocks.
+/// (spec §3, whose cell areas cost a few thousand sines) and the ego's tree of maneuver blocks; it
+/// also keeps the clearance fields' working memory from step to step (whatever the speed).
 /// Holds that cache: use it from one thread at a time. Any planner may plan any vehicle (the
 /// result never depends on what it planned before), so many vehicles at one speed can share one,
 /// which keeps its cache in the processor's (the simulator keeps a few per thread, by speed).
