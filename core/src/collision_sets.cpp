@@ -367,16 +367,16 @@ constexpr std::size_t second_order_steps = 2;
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                  std::span<const double> forecast_times, double cap,
                                  std::span<const std::uint8_t> wanted)
-    : clearance_field(sweep, obstacle, forecast_times, cap, wanted, nullptr) {}
+    : clearance_field(sweep, obstacle, forecast_times, cap, wanted, nullptr, recording::collisions) {}
 
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                  std::span<const double> forecast_times, double cap,
-                                 std::span<const std::uint8_t> wanted, raster_scratch& scratch)
-    : clearance_field(sweep, obstacle, forecast_times, cap, wanted, &scratch) {}
+                                 std::span<const std::uint8_t> wanted, raster_scratch& scratch, recording what)
+    : clearance_field(sweep, obstacle, forecast_times, cap, wanted, &scratch, what) {}
 
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                  std::span<const double> forecast_times, double cap,
-                                 std::span<const std::uint8_t> wanted, raster_scratch* reused)
+                                 std::span<const std::uint8_t> wanted, raster_scratch* reused, recording what)
     : sweep_(sweep),
       obstacle_(obstacle),
       taus_(forecast_times.begin(), forecast_times.end()),
@@ -452,7 +452,9 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   std::optional<raster_scratch> own_scratch;
   raster_scratch& scratch = reused != nullptr ? *reused : own_scratch.emplace();
   raster_state& shared = scratch.shared_;
-  shared.reset(samples, times.size(), sweep.blocks().size());
+  const bool record = what == recording::first_overlaps;
+  if (record) first_overlap_.assign(slots, {});
+  shared.reset(samples, times.size(), sweep.blocks().size(), record);
   for (const std::uint32_t root : sweep.roots()) shared.wait(0, root);
   std::size_t shared_done = 0;
   raster_state& own = scratch.own_;
@@ -483,6 +485,10 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       raster(k, o, own);
     }
     own.hit.for_each([&](std::size_t p) { sampled_[i].set(order[p]); });
+    if (record) {
+      first_overlap_[i].assign(samples, no_overlap);
+      own.hit.for_each([&](std::size_t p) { first_overlap_[i][order[p]] = own.hit_at[p]; });
+    }
   }
   if (!near) {
     // Never within the walking cap of any sample: every clearance is exactly +cap.
@@ -514,10 +520,24 @@ void clearance_field::raster(std::size_t k, const obstacle_at& o, raster_state& 
   }
 }
 
-void clearance_field::raster_state::reset(std::size_t samples, std::size_t times, std::size_t blocks) {
+void clearance_field::raster_state::reset(std::size_t samples, std::size_t times, std::size_t blocks, bool record) {
   hit.clear(samples);
   head.assign(times, none);
   if (link.size() < blocks) link.resize(blocks);
+  if (record) {
+    hit_at.resize(samples);
+  } else {
+    hit_at.clear();
+  }
+}
+
+std::uint32_t clearance_field::first_overlap(std::size_t i, std::size_t m) const {
+  const std::size_t s = slot(i);
+  if (s >= first_overlap_.size() || first_overlap_[s].empty()) {
+    throw std::logic_error("clearance_field::first_overlap: forecast time " + std::to_string(i) +
+                           " was not evaluated with recording::first_overlaps");
+  }
+  return first_overlap_[s][m];
 }
 
 void clearance_field::raster_state::wait(std::size_t k, std::uint32_t block) {
@@ -602,7 +622,16 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     high = low;
   }
   const auto mark_all = [&] {
-    for (std::size_t q = b.begin; q < b.end; ++q) state.hit.set(q);
+    if (state.hit_at.empty()) {
+      for (std::size_t q = b.begin; q < b.end; ++q) state.hit.set(q);
+      return;
+    }
+    // A sample is in one waiting block at a time, and a block is marked once: hit once, at the
+    // first sample time at which it overlaps (no wait passes a time at which one of its samples can).
+    for (std::size_t q = b.begin; q < b.end; ++q) {
+      state.hit.set(q);
+      state.hit_at[q] = static_cast<std::uint32_t>(k);
+    }
   };
   if (single) {
     // A single sample: `clearance_at` ≤ 0, bit for bit.
@@ -939,6 +968,22 @@ std::vector<sample_mask> sampled_collisions_reference(const ego_state& ego, cons
     sets.push_back(std::move(set));
   }
   return sets;
+}
+
+std::vector<std::uint32_t> first_overlaps_reference(const ego_state& ego, const maneuver_samples& samples,
+                                                    const forecast_obstacle& obstacle, double forecast_time,
+                                                    const collision_window& window) {
+  const std::vector<double> times = sample_times(window.duration, window.time_step);
+  std::vector<std::uint32_t> first(samples.size(), clearance_field::no_overlap);
+  for (std::size_t m = 0; m < samples.size(); ++m) {
+    for (std::size_t k = 0; k < times.size(); ++k) {
+      if (clearance_at(ego, samples.maneuvers[m], obstacle, forecast_time, times[k], window) <= 0.0) {
+        first[m] = static_cast<std::uint32_t>(k);
+        break;
+      }
+    }
+  }
+  return first;
 }
 
 std::vector<sample_mask> collision_sets_reference(const ego_state& ego, const maneuver_samples& samples,

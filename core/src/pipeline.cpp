@@ -646,8 +646,25 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     result.command = decision->command;
     result.mode = decision->mode;
   } else {
-    const std::vector<double> first_collision =
-        first_collision_times(ego, samples.maneuvers, relevant, assigned_tau, window);
+    std::vector<double> first_collision;
+    if (options.reference) {
+      first_collision = first_collision_times(ego, samples.maneuvers, relevant, assigned_tau, window);
+    } else {
+      // The first sample time at which each maneuver overlaps an obstacle, from the raster of each
+      // obstacle's assigned forecast time (the sampled collisions' own test, recorded when it hits).
+      first_collision.assign(samples.size(), no_collision);
+      const std::vector<double>& times = sweep->times();
+      for (std::size_t j = 0; j < n; ++j) {
+        std::vector<std::uint8_t> only(tau_count, 0);
+        only[assignment[j]] = 1;
+        const clearance_field field(*sweep, relevant[j], taus, clearance_cap, only, raster,
+                                    clearance_field::recording::first_overlaps);
+        for (std::size_t m = 0; m < samples.size(); ++m) {
+          const std::uint32_t k = field.first_overlap(assignment[j], m);
+          if (k != clearance_field::no_overlap) first_collision[m] = std::min(first_collision[m], times[k]);
+        }
+      }
+    }
     const maneuver_decision last_resort = near_crash_maneuver(samples, first_collision, nominal.curvature);
     result.command = last_resort.command;
     result.mode = last_resort.mode;

@@ -149,6 +149,41 @@ TEST(collision_sets, a_field_rastered_in_reused_scratch_equals_a_fresh_one_bit_f
   EXPECT_GT(colliding, 0u);
 }
 
+TEST(collision_sets, recorded_first_overlaps_are_the_first_sample_times_at_which_each_sample_overlaps) {
+  // One forecast time at a time (as the near-crash choice asks) and all at once, in one scratch.
+  constexpr double cap = 2.0;
+  std::size_t overlapping = 0;
+  clearance_field::raster_scratch scratch;
+  for_each_brute_force_case(testing::property_seed() + 29, [&](const brute_force_case& c, const std::vector<double>& taus) {
+    const clearance_field all(c.sweep, c.obstacle, taus, cap, {}, scratch, clearance_field::recording::first_overlaps);
+    for (std::size_t i = 0; i < taus.size(); i += 3) {
+      std::vector<std::uint8_t> only(taus.size(), 0);
+      only[i] = 1;
+      const clearance_field one(c.sweep, c.obstacle, taus, cap, only, scratch, clearance_field::recording::first_overlaps);
+      const std::vector<std::uint32_t> expected = first_overlaps_reference(c.in.ego, c.p.samples, c.obstacle, taus[i], c.p.window);
+      for (std::size_t m = 0; m < c.p.samples.size(); ++m) {
+        ASSERT_EQ(one.first_overlap(i, m), expected[m]) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(c.in);
+        ASSERT_EQ(all.first_overlap(i, m), expected[m]) << "tau " << taus[i] << " sample " << m;
+        ASSERT_EQ(one.sampled_collisions(i).test(m), expected[m] != clearance_field::no_overlap);
+        overlapping += expected[m] != clearance_field::no_overlap ? 1 : 0;
+      }
+      if (i + 1 < taus.size() && !one.forecast_independent()) {
+        EXPECT_THROW((void)one.first_overlap(i + 1, 0), std::logic_error);  // its set was not computed
+      }
+    }
+  });
+  EXPECT_GT(overlapping, 0u);
+}
+
+TEST(collision_sets, a_field_without_recording_refuses_to_give_first_overlaps) {
+  std::mt19937_64 rng(testing::property_seed() + 31);
+  const plan_input in = two_obstacle_scene(rng, 1);
+  const prepared p = prepare(in, 0.05);
+  const ego_sweep sweep(in.ego, p.samples, p.window);
+  const clearance_field field(sweep, p.obstacles.front(), forecast_times(planner_config{}), 2.0);
+  EXPECT_THROW((void)field.first_overlap(0, 0), std::logic_error);
+}
+
 TEST(collision_sets, a_bounded_query_is_exact_below_its_ceiling_and_never_hides_a_lower_clearance) {
   constexpr double cap = 2.0;
   std::size_t below = 0;

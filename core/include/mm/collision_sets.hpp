@@ -261,9 +261,13 @@ class clearance_field {
   /// carried over: a field built with one equals a field built without, bit for bit). Saves
   /// every field's allocation and initialisation of a list link per block of the sweep.
   class raster_scratch;
-  /// The same, rastering in `scratch`, which no other field may use at the same time.
+  /// What a field keeps of its sampled collisions: which samples collide, or also when.
+  enum class recording : std::uint8_t { collisions, first_overlaps };
+  /// The same, rastering in `scratch`, which no other field may use at the same time; with
+  /// `recording::first_overlaps` it also keeps when each sample first overlaps (`first_overlap`).
   clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
-                  double cap, std::span<const std::uint8_t> wanted, raster_scratch& scratch);
+                  double cap, std::span<const std::uint8_t> wanted, raster_scratch& scratch,
+                  recording what = recording::collisions);
 
   std::size_t forecast_count() const { return taus_.size(); }
   /// True when the set of forecast time i was computed (`wanted`).
@@ -290,6 +294,14 @@ class clearance_field {
   double floor_of_all(std::size_t m);
   /// True when some sample overlaps the obstacle forecast with forecast time i at a sample time.
   bool collides(std::size_t i) const { return !sampled_[slot(i)].none(); }
+  /// Returned by `first_overlap` for a sample that overlaps at no sample time.
+  static constexpr std::uint32_t no_overlap = std::numeric_limits<std::uint32_t>::max();
+  /// Index of the first sample time at which sample m overlaps the obstacle forecast with forecast
+  /// time i (signed distance − margin ≤ 0, as `sampled_collisions`), or `no_overlap`: equal to
+  /// `first_overlaps_reference`. Only for a field built with `recording::first_overlaps`, and a
+  /// forecast time whose set it computed (one it evaluated, or any when the obstacle does not turn);
+  /// else std::logic_error.
+  std::uint32_t first_overlap(std::size_t i, std::size_t m) const;
   /// True when the obstacle stays farther than the cap from every sample at every time under
   /// every forecast time: every clearance is exactly +cap, so the obstacle changes nothing.
   bool inert() const { return inert_; }
@@ -310,7 +322,7 @@ class clearance_field {
 
  private:
   clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> forecast_times,
-                  double cap, std::span<const std::uint8_t> wanted, raster_scratch* reused);
+                  double cap, std::span<const std::uint8_t> wanted, raster_scratch* reused, recording what);
   /// An obstacle's placement: reference point [m] and heading direction (cos, sin).
   using obstacle_at = placement;
   /// Where the set of forecast time i is kept: 0 for all when the forecasts do not depend on τ.
@@ -349,9 +361,11 @@ class clearance_field {
     sample_mask hit;
     std::vector<std::uint32_t> head;  ///< [k]: first block waiting for time index k
     std::vector<std::uint32_t> link;  ///< [block]: the next in the same list (read only for blocks in a list)
+    std::vector<std::uint32_t> hit_at;  ///< [position in tree order]: time index of the hit (read only where hit; empty when not recorded)
     /// No sample hit, every list empty, for `samples` samples, `times` time indices and `blocks`
-    /// blocks; keeps the buffers' memory (`link` is written before it is read, so not cleared).
-    void reset(std::size_t samples, std::size_t times, std::size_t blocks);
+    /// blocks, recording when samples are hit if `record`; keeps the buffers' memory (`link` and
+    /// `hit_at` are written before they are read, so not cleared).
+    void reset(std::size_t samples, std::size_t times, std::size_t blocks, bool record);
     /// Block `block` waits for time index k (past the last time: it is done).
     void wait(std::size_t k, std::uint32_t block);
     /// Empties the list of time index k and returns its first block.
@@ -420,6 +434,7 @@ class clearance_field {
   clearance_set& materialized(std::size_t i) const;
   mutable std::vector<clearance_set> sets_;  ///< [slot][m] (empty until `materialized`)
   std::vector<sample_mask> sampled_;  ///< [slot]: the sampled collisions
+  std::vector<std::vector<std::uint32_t>> first_overlap_;  ///< [slot][m]: `first_overlap` (only when recorded, for the slots computed)
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
   std::unique_ptr<double[]> floor_all_;  ///< [m]: `floor_of_all` where `floor_all_known_` (allocated, uninitialised, on first use)
   sample_mask floor_all_known_;
@@ -456,6 +471,13 @@ std::vector<sample_mask> sampled_collisions_reference(const ego_state& ego, cons
                                                       const forecast_obstacle& obstacle,
                                                       std::span<const double> forecast_times,
                                                       const collision_window& window);
+
+/// The reference for `clearance_field::first_overlap`, by brute force: entry [m] is the index of
+/// the first sample time of the window at which sample m's signed distance − margin to the obstacle
+/// forecast with `forecast_time` is ≤ 0, or `clearance_field::no_overlap`.
+std::vector<std::uint32_t> first_overlaps_reference(const ego_state& ego, const maneuver_samples& samples,
+                                                    const forecast_obstacle& obstacle, double forecast_time,
+                                                    const collision_window& window);
 
 /// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed
 /// clearance of sample m with the obstacle forecast with `forecast_times[i]` (ascending): the
