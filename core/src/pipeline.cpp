@@ -653,8 +653,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       // The first sample time at which each maneuver overlaps an obstacle, from the raster of each
       // obstacle's assigned forecast time (the sampled collisions' own test, recorded when it hits).
       first_collision.assign(samples.size(), no_collision);
-      const std::vector<double>& times = sweep->times();
-      for (std::size_t j = 0; j < n; ++j) {
+      for (std::size_t j = 0; j < n; ++j) {  // n > 0: there is a sweep
+        const std::vector<double>& times = sweep->times();
         std::vector<std::uint8_t> only(tau_count, 0);
         only[assignment[j]] = 1;
         const clearance_field field(*sweep, relevant[j], taus, clearance_cap, only, raster,
