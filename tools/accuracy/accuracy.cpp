@@ -44,6 +44,12 @@ struct fast_setting {
   std::size_t colliding = 0;        ///< (sample, τ) pairs colliding for the reference at this grid
   std::size_t missed = 0;           ///< of those, safe for the fast planner
   std::size_t only_fast = 0;        ///< colliding for the fast planner only
+  /// As on the command line: AxC@DT.
+  std::string label() const {
+    char name[64];
+    std::snprintf(name, sizeof name, "%zux%zu@%g", resolution.accelerations, resolution.curvatures, time_step);
+    return name;
+  }
 };
 
 constexpr std::uint64_t max_grid_nodes = 2001;  ///< the planner's bound on a grid's side (config.resolution)
@@ -146,6 +152,10 @@ int measure(const accuracy_options& o) {
       const auto t1 = std::chrono::steady_clock::now();
       const mm::plan_result f = mm::plan(in);
       setting.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t1).count();
+      if (!f.ok()) {
+        std::fprintf(stderr, "scene %zu, fast %s: %s\n", s, setting.label().c_str(), f.error.c_str());
+        return 1;
+      }
       double scene_worst = 0.0;
       for (std::size_t i = 0; i < f.forecast_times.size(); ++i) {
         scene_worst = std::max({scene_worst, std::abs(f.mi_brake[i] - r.mi_brake[i]),
@@ -161,6 +171,10 @@ int measure(const accuracy_options& o) {
         recorded.config.record_samples = true;
         const mm::plan_result fs = mm::plan(recorded);
         const mm::plan_result rs = mm::plan_reference(recorded, {setting.resolution, reference.proof_resolution});
+        if (!fs.ok() || !rs.ok()) {
+          std::fprintf(stderr, "scene %zu, signs at %s: %s\n", s, setting.label().c_str(), (fs.ok() ? rs : fs).error.c_str());
+          return 1;
+        }
         for (std::size_t i = 0; i < fs.forecast_times.size(); ++i) {
           for (std::size_t m = 0; m < fs.samples->maneuvers.size(); ++m) {
             const bool fast_safe = fs.samples->safe_by_forecast[i][m] != 0;
@@ -180,16 +194,13 @@ int measure(const accuracy_options& o) {
   std::printf("%-16s %9s %9s %9s %14s %12s\n", "fast", "max|dMI|", "p95", "median", "disagreements", "ms/scene");
   for (fast_setting& setting : settings) {
     std::sort(setting.errors.begin(), setting.errors.end());
-    char name[64];
-    std::snprintf(name, sizeof name, "%zux%zu@%g", setting.resolution.accelerations, setting.resolution.curvatures,
-                  setting.time_step);
-    std::printf("%-16s %9.4f %9.4f %9.4f %14zu %12.3f\n", name, setting.worst,
+    std::printf("%-16s %9.4f %9.4f %9.4f %14zu %12.3f\n", setting.label().c_str(), setting.worst,
                 setting.errors[setting.errors.size() * 95 / 100], setting.errors[setting.errors.size() / 2],
                 setting.disagreements, 1e3 * setting.seconds / static_cast<double>(scenes));
     if (signs) {
       std::printf("%-16s colliding (sample, tau) pairs for the reference at this grid: %zu; missed by the fast planner: %zu; "
                   "colliding for the fast planner only: %zu\n",
-                  name, setting.colliding, setting.missed, setting.only_fast);
+                  setting.label().c_str(), setting.colliding, setting.missed, setting.only_fast);
     }
   }
   return 0;
