@@ -484,11 +484,11 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       }
       raster(k, o, own);
     }
-    own.hit.for_each([&](std::size_t p) { sampled_[i].set(order[p]); });
-    if (record) {
-      first_overlap_[i].assign(samples, no_overlap);
-      own.hit.for_each([&](std::size_t p) { first_overlap_[i][order[p]] = own.hit_at[p]; });
-    }
+    if (record) first_overlap_[i].assign(samples, no_overlap);
+    own.hit.for_each([&](std::size_t p) {
+      sampled_[i].set(order[p]);
+      if (record) first_overlap_[i][order[p]] = own.hit_at[p];
+    });
   }
   if (!near) {
     // Never within the walking cap of any sample: every clearance is exactly +cap.
@@ -621,16 +621,13 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     low = d - margin;
     high = low;
   }
+  // A sample is in one waiting block at a time, and a block is marked once: hit once, at the first
+  // sample time at which it overlaps (no wait passes a time at which one of its samples can).
   const auto mark_all = [&] {
-    if (state.hit_at.empty()) {
-      for (std::size_t q = b.begin; q < b.end; ++q) state.hit.set(q);
-      return;
-    }
-    // A sample is in one waiting block at a time, and a block is marked once: hit once, at the
-    // first sample time at which it overlaps (no wait passes a time at which one of its samples can).
+    const bool record = !state.hit_at.empty();
     for (std::size_t q = b.begin; q < b.end; ++q) {
       state.hit.set(q);
-      state.hit_at[q] = static_cast<std::uint32_t>(k);
+      if (record) state.hit_at[q] = static_cast<std::uint32_t>(k);
     }
   };
   if (single) {
@@ -953,17 +950,12 @@ std::vector<sample_mask> sampled_collisions_reference(const ego_state& ego, cons
                                                       const forecast_obstacle& obstacle,
                                                       std::span<const double> forecast_times,
                                                       const collision_window& window) {
-  const std::vector<double> times = sample_times(window.duration, window.time_step);
   std::vector<sample_mask> sets;
   for (const double tau : forecast_times) {
     sample_mask set(samples.size());
+    const std::vector<std::uint32_t> first = first_overlaps_reference(ego, samples, obstacle, tau, window);
     for (std::size_t m = 0; m < samples.size(); ++m) {
-      for (const double t : times) {
-        if (clearance_at(ego, samples.maneuvers[m], obstacle, tau, t, window) <= 0.0) {
-          set.set(m);
-          break;
-        }
-      }
+      if (first[m] != clearance_field::no_overlap) set.set(m);
     }
     sets.push_back(std::move(set));
   }
