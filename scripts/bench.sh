@@ -4,7 +4,7 @@
 #      1 and 2 planning threads; JSON in out/bench/bench.json) and draws the cost chart
 #      docs/figures/performance/cost-growth.png;
 #   2. with --full also: the multi-obstacle search agreement (1100 random scenes with 2 and with 3
-#      obstacles) and the Table 1 sweep with 1 and 2 jobs, timed. Logs in out/bench/.
+#      obstacles) and the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time. Logs in out/bench/
 #   bash scripts/bench.sh [--full]
 # Run it on an otherwise idle machine: the timings are wall-clock.
 set -euo pipefail
@@ -22,23 +22,29 @@ echo "== maneuvermap_bench" >&2
   | tee "$out/cost-growth.csv"
 
 if [[ "${1:-}" == "--full" ]]; then
-  # seconds FILE COMMAND...: runs COMMAND, writes its wall time [s] to FILE.
-  seconds() {
-    local start end
-    start=$(date +%s.%N)
-    "${@:2}"
-    end=$(date +%s.%N)
-    awk -v a="$start" -v b="$end" 'BEGIN { printf "%.1f\n", b - a }' >"$1"
+  # timed LABEL COMMAND...: runs COMMAND; appends "LABEL: wall W s, CPU C s" (user + system time of
+  # COMMAND and its threads, from bash's own `time`) to sweeps.txt.
+  timed() {
+    local label=$1 report
+    shift
+    report=$( { TIMEFORMAT='%R %U %S'; time "$@" >/dev/null; } 2>&1 )
+    awk -v l="$label" '{ printf "%s: wall %.1f s, CPU %.1f s\n", l, $1, $2 + $3 }' <<<"$report" | tee -a "$out/sweeps.txt"
   }
   echo "== fast vs exhaustive forecast-time search" >&2
   for k in 2 3; do
     ./build/release/tools/maneuvermap_assignment --scenes 1100 --obstacles "$k" --seed 1 | tee "$out/assignment-$k.txt"
   done
-  echo "== table1 sweep, 1 and 2 jobs" >&2
-  for j in 1 2; do
-    seconds "$out/table1-jobs$j.seconds" ./build/release/cli/maneuvermap sweep table1 --jobs "$j" \
-      --out "$out/table1-jobs$j" >/dev/null
-    echo "table1 --jobs $j: $(cat "$out/table1-jobs$j.seconds") s" | tee -a "$out/sweeps.txt"
+  # The machine's speed can drift by tens of per cent within minutes: 1 and 2 jobs alternate twice,
+  # and the CPU times show whether a slow run was the machine (more CPU time for the same work).
+  echo "== table1 sweep, 1 and 2 jobs, alternating" >&2
+  : >"$out/sweeps.txt"
+  for pair in 1 2; do
+    for j in 1 2; do
+      timed "table1 --jobs $j (pair $pair)" ./build/release/cli/maneuvermap sweep table1 --jobs "$j" \
+        --out "$out/table1-jobs$j-pair$pair"
+    done
   done
-  cmp "$out/table1-jobs1/runs.csv" "$out/table1-jobs2/runs.csv" && echo "runs.csv identical for 1 and 2 jobs" | tee -a "$out/sweeps.txt"
+  cmp "$out/table1-jobs1-pair1/runs.csv" "$out/table1-jobs2-pair1/runs.csv" &&
+    cmp "$out/table1-jobs1-pair1/runs.csv" "$out/table1-jobs2-pair2/runs.csv" &&
+    echo "runs.csv identical for 1 and 2 jobs" | tee -a "$out/sweeps.txt"
 fi
