@@ -11,7 +11,6 @@
 #include <fstream>
 #include <limits>
 #include <map>
-#include <numbers>
 #include <sstream>
 
 #include "mm/scenario_file/builtin.hpp"
@@ -42,7 +41,6 @@ using mm::sim::path;
 
 constexpr units speed_units{kmh, mps};
 constexpr units angle_units{degrees, radians};
-constexpr double pi = std::numbers::pi;
 
 std::vector<std::string> concat(std::vector<std::string> a, const std::vector<std::string>& b) {
   a.insert(a.end(), b.begin(), b.end());
