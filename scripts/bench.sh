@@ -4,7 +4,7 @@
 #      1 and 2 planning threads; JSON in out/bench/bench.json) and draws the cost chart
 #      docs/figures/performance/cost-growth.png;
 #   2. with --full also: the multi-obstacle search agreement (1100 random scenes with 2 and with 3
-#      obstacles) and the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time. Logs in out/bench/
+#      obstacles) and the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time. Logs in out/bench/.
 #   bash scripts/bench.sh [--full]
 # Run it on an otherwise idle machine: the timings are wall-clock.
 set -euo pipefail
@@ -44,7 +44,8 @@ if [[ "${1:-}" == "--full" ]]; then
         --out "$out/table1-jobs$j-pair$pair"
     done
   done
-  cmp "$out/table1-jobs1-pair1/runs.csv" "$out/table1-jobs2-pair1/runs.csv" &&
-    cmp "$out/table1-jobs1-pair1/runs.csv" "$out/table1-jobs2-pair2/runs.csv" &&
-    echo "runs.csv identical for 1 and 2 jobs" | tee -a "$out/sweeps.txt"
+  for run in table1-jobs2-pair1 table1-jobs1-pair2 table1-jobs2-pair2; do
+    cmp "$out/table1-jobs1-pair1/runs.csv" "$out/$run/runs.csv"
+  done
+  echo "runs.csv identical in all four runs" | tee -a "$out/sweeps.txt"
 fi
