@@ -52,6 +52,7 @@ void timed_plan(benchmark::State& state, const mm::plan_input& in) {
   state.counters["bounds"] = static_cast<double>(work.bound_checks);
   state.counters["distances"] = static_cast<double>(work.distance_evaluations);
   state.counters["refinements"] = static_cast<double>(work.refinements);
+  state.counters["translations"] = static_cast<double>(work.translation_minima);
   state.counters["assignments"] = static_cast<double>(work.assignments_evaluated);
 }
 

@@ -162,6 +162,8 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, bool
     nominal.curvatures = {samples_.nominal_curvature};
     add_root(nominal);
   }
+  straight_spread_.resize(blocks_.size());
+  straight_spread_known_.assign(blocks_.size(), 0);
 }
 
 std::uint32_t ego_sweep::add_block(const grid_view& grid, std::size_t r0, std::size_t r1, std::size_t c0,
@@ -257,6 +259,19 @@ double ego_sweep::block_spread(const block& b, std::size_t k) const {
   return (b.acceleration_spread * along_a + b.curvature_spread * along_k) * (1.0 + 1e-9) + 1e-9;
 }
 
+widening ego_sweep::straight_spread_of(const block& b) const {
+  // block_spread's terms for t > T_h: constant ones, and those proportional to t − T_h.
+  const double horizon = window_.horizon;
+  const double r = ego_radius_;
+  const double kappa = b.largest_curvature;
+  const double s = arc_length_bound(b.top_acceleration, horizon);
+  const double v = speed_bound(b.top_acceleration);
+  const double half_square = 0.5 * horizon * horizon;
+  const double base = b.acceleration_spread * (half_square * (1.0 + r * kappa)) + b.curvature_spread * (s * (0.5 * s + r));
+  const double rate = b.acceleration_spread * (horizon + v * kappa * half_square) + b.curvature_spread * (v * s);
+  return {base * (1.0 + 1e-9) + 1e-9, rate * (1.0 + 1e-9)};
+}
+
 double ego_sweep::velocity_spread(const block& b, std::size_t k) const {
   // The velocity v(t)(cos θ, sin θ): |∂/∂a| ≤ t + v κ t²/2 and |∂/∂κ| ≤ v s (t ≤ T_h; T_h after).
   const double t = std::min(times_[k], window_.horizon);
@@ -299,11 +314,6 @@ ego_sweep::placement ego_sweep::local_placement_at(std::size_t m, double t) cons
   return maneuver_local_placement(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
 }
 
-ego_sweep::line ego_sweep::straight_line(std::size_t m) const {
-  const straight_part& part = straight(m);
-  return {ego_.pose.position + rotated(part.local, start_rotation_.x, start_rotation_.y), part.speed * part.direction};
-}
-
 const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
   straight_part& part = straight_[m];
   if (!straight_known_[m]) {
@@ -312,8 +322,9 @@ const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
     const double cap = ego_.limits.speed_cap;
     const maneuver& u = samples_.maneuvers[m];
     const placement end = maneuver_local_placement(ego_.speed, u, horizon, horizon, cap);
-    part = {end.position, end.direction, speed_after(ego_.speed, u.acceleration, horizon, cap),
-            rotated(end.direction, start_rotation_.x, start_rotation_.y)};
+    const placement world = in_world(end);
+    const double speed = speed_after(ego_.speed, u.acceleration, horizon, cap);
+    part = {end.position, end.direction, speed, world.direction, world.position, speed * world.direction};
     straight_known_[m] = 1;
   }
   return part;
@@ -362,7 +373,87 @@ std::size_t first_possible(std::size_t k, double gap, double rate, double time_s
 /// distance from how fast it changes now.
 constexpr std::size_t second_order_steps = 2;
 
+/// `smallest_signed_distance` of the ego's footprint placed at `e` and the obstacle's placed at `o`,
+/// the ego translating by `motion` relative to it: the rectangle closed forms where they apply.
+translation_minimum straight_part_minimum(const footprint& ego_shape, const placement& e, const footprint& obstacle_shape,
+                                          const placement& o, const translation& motion) {
+  if (const auto* r = std::get_if<rectangle>(&ego_shape)) {
+    const placed_rectangle ego{e.position, e.direction, r->length / 2.0, r->width / 2.0};
+    if (const auto* b = std::get_if<rectangle>(&obstacle_shape)) {
+      return smallest_signed_distance(ego, placed_rectangle{o.position, o.direction, b->length / 2.0, b->width / 2.0},
+                                      motion);
+    }
+    if (const auto* d = std::get_if<disc>(&obstacle_shape)) return smallest_signed_distance(ego, o.position, d->radius, motion);
+  }
+  return smallest_signed_distance(place(ego_shape, e.position, e.direction), place(obstacle_shape, o.position, o.direction),
+                                  motion);
+}
+
+/// True when the smallest signed distance of the same is ≤ `margin` [m]: `signed_distance_reaches`
+/// where the rectangle forms apply.
+bool straight_part_collides(const footprint& ego_shape, const placement& e, const footprint& obstacle_shape,
+                            const placement& o, const translation& motion, double margin) {
+  if (const auto* r = std::get_if<rectangle>(&ego_shape)) {
+    const placed_rectangle ego{e.position, e.direction, r->length / 2.0, r->width / 2.0};
+    if (const auto* b = std::get_if<rectangle>(&obstacle_shape)) {
+      return signed_distance_reaches(ego, placed_rectangle{o.position, o.direction, b->length / 2.0, b->width / 2.0},
+                                     motion, margin);
+    }
+    if (const auto* d = std::get_if<disc>(&obstacle_shape)) {
+      return signed_distance_reaches(ego, o.position, d->radius, motion, margin);
+    }
+  }
+  return straight_part_minimum(ego_shape, e, obstacle_shape, o, motion).distance - margin <= 0.0;
+}
+
+/// `first_contact` of the same, at `level` [m].
+double straight_part_contact(const footprint& ego_shape, const placement& e, const footprint& obstacle_shape,
+                             const placement& o, const translation& motion, double level) {
+  if (const auto* r = std::get_if<rectangle>(&ego_shape)) {
+    const placed_rectangle ego{e.position, e.direction, r->length / 2.0, r->width / 2.0};
+    if (const auto* b = std::get_if<rectangle>(&obstacle_shape)) {
+      return first_contact(ego, placed_rectangle{o.position, o.direction, b->length / 2.0, b->width / 2.0}, motion, level);
+    }
+    if (const auto* d = std::get_if<disc>(&obstacle_shape)) return first_contact(ego, o.position, d->radius, motion, level);
+  }
+  return first_contact(place(ego_shape, e.position, e.direction), place(obstacle_shape, o.position, o.direction), motion,
+                       level);
+}
+
+/// The ego executing `u` and the obstacle forecast with `tau`, both placed at `start` (the start of
+/// the straight part), and the ego's translation relative to the obstacle from there to T_c: what
+/// `clearance_field::straight_motion_of` computes, in the same order of operations.
+struct straight_setup {
+  placement ego;
+  placement obstacle;
+  translation motion;
+};
+
+straight_setup straight_setup_of(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle, double tau,
+                                 double start, const collision_window& window) {
+  const placement end = maneuver_placement(ego.pose, unit_vector(ego.pose.heading), ego.speed, u, window.horizon,
+                                           window.horizon, ego.limits.speed_cap);
+  const vec2 ego_velocity = speed_after(ego.speed, u.acceleration, window.horizon, ego.limits.speed_cap) * end.direction;
+  const placement e{start > window.horizon ? end.position + (start - window.horizon) * ego_velocity : end.position,
+                    end.direction};
+  const pose p = forecast_pose(obstacle.motion, tau, start);
+  const placement o{p.position, unit_vector(p.heading)};
+  return {e, o, {ego_velocity - obstacle.motion.speed * o.direction, window.duration - start}};
+}
+
+/// First index of `times` at or after `t`.
+std::size_t first_at_or_after(const std::vector<double>& times, double t) {
+  std::size_t k = 0;
+  while (k < times.size() && times[k] < t) ++k;
+  return k;
+}
+
 }  // namespace
+
+double straight_part_start(const forecast_obstacle& obstacle, double forecast_time, const collision_window& window) {
+  const double start = obstacle.motion.yaw_rate == 0.0 ? window.horizon : std::max(window.horizon, forecast_time);
+  return std::min(start, window.duration);
+}
 
 clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                  std::span<const double> forecast_times, double cap,
@@ -429,16 +520,31 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     first_straight_.push_back(k);
   }
   const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
+  // The straight part of each slot's window: where it starts, and both road users there.
+  part_start_.reserve(slots);
+  part_first_.reserve(slots);
+  part_obstacle_.reserve(slots);
+  part_velocity_.reserve(slots);
+  for (std::size_t i = 0; i < slots; ++i) {
+    const double start = straight_part_start(obstacle, taus_[i], window);
+    const pose p = forecast_pose(motion, taus_[i], start);
+    part_start_.push_back(start);
+    part_first_.push_back(first_at_or_after(times, start));
+    part_obstacle_.push_back({p.position, unit_vector(p.heading)});
+    part_velocity_.push_back(motion.speed * part_obstacle_.back().direction);
+  }
   sets_.assign(slots, {});
   sampled_.assign(slots, sample_mask(samples));
   floor_.assign(slots, {});
   exact_.assign(slots, {});
 
-  // The sampled collisions. The times shared by every forecast time that includes them (t_k ≤ τ:
-  // the CTRV placement) are rastered once, in order; each forecast time continues from their state
-  // at τ with its straight part. A block waits for the first time index at which one of its samples
-  // can overlap: the signed distance changes no faster than L under any forecast, so a wait
-  // computed on the shared times holds for every forecast time's straight part too.
+  // The collisions. The sample times shared by every forecast time that includes them (t_k ≤ τ: the
+  // CTRV placement, and before the straight part of the window) are rastered once, in order; each
+  // forecast time continues from their state at τ with its own sample times before its straight
+  // part (the obstacle straight, the ego still on its arc), then the straight part in closed form. A
+  // block waits for the first time index at which one of its samples can overlap: the signed
+  // distance changes no faster than L under any forecast, so a wait computed on the shared times
+  // holds for every forecast time's own times too.
   const double margin = window.margin;
   const vec2 start = sweep.reach_centre(0);
   bool near = false;
@@ -466,9 +572,13 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     }
     return false;
   };
+  // How fast the reach test's gap can close between sample times: the obstacle's reference point
+  // and the ego's reach radius.
+  const double reach_rate = motion.speed + sweep.largest_speed();
   for (std::size_t i = 0; i < slots; ++i) {
     if (!slot_wanted(i)) continue;
-    for (; shared_done < first_straight_[i]; ++shared_done) {
+    const std::size_t shared_until = shared_end(i);
+    for (; shared_done < shared_until; ++shared_done) {
       if (out_of_reach(shared_done, turning_[shared_done])) {
         shared.postpone(shared_done);
         continue;
@@ -476,7 +586,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       raster(shared_done, turning_[shared_done], shared);
     }
     own = shared;
-    for (std::size_t k = first_straight_[i]; k < times.size(); ++k) {
+    for (std::size_t k = shared_until; k < part_first_[i]; ++k) {
       const obstacle_at o = obstacle_pose(i, k);
       if (out_of_reach(k, o)) {
         own.postpone(k);
@@ -484,7 +594,18 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       }
       raster(k, o, own);
     }
-    if (record) first_overlap_[i].assign(samples, no_overlap);
+    // The straight part: its sample times bound how close the obstacle can come to any sample
+    // (within a step of each, and for inertness), then every block is tested once in closed form.
+    bool reachable = false;
+    for (std::size_t k = part_first_[i]; k < times.size(); ++k) {
+      const obstacle_at o = obstacle_pose(i, k);
+      out_of_reach(k, o);
+      const double gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
+      if (gap <= reach_rate * step * (1.0 + 1e-9)) reachable = true;
+    }
+    // Every time of the straight part lies within a step of one of its sample times.
+    if (reachable) raster_straight_part(i, own);
+    if (record) first_overlap_[i].assign(samples, no_collision);
     own.hit.for_each([&](std::size_t p) {
       sampled_[i].set(order[p]);
       if (record) first_overlap_[i][order[p]] = own.hit_at[p];
@@ -531,7 +652,7 @@ void clearance_field::raster_state::reset(std::size_t samples, std::size_t times
   }
 }
 
-std::uint32_t clearance_field::first_overlap(std::size_t i, std::size_t m) const {
+double clearance_field::first_overlap(std::size_t i, std::size_t m) const {
   const std::size_t s = slot(i);
   if (s >= first_overlap_.size() || first_overlap_[s].empty()) {
     throw std::logic_error("clearance_field::first_overlap: forecast time " + std::to_string(i) +
@@ -627,7 +748,7 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     const bool record = !state.hit_at.empty();
     for (std::size_t q = b.begin; q < b.end; ++q) {
       state.hit.set(q);
-      if (record) state.hit_at[q] = static_cast<std::uint32_t>(k);
+      if (record) state.hit_at[q] = sweep_.times()[k];
     }
   };
   if (single) {
@@ -648,6 +769,153 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     raster_block(index + 1, k, o, state);
     raster_block(b.second, k, o, state);
   }
+}
+
+void clearance_field::raster_straight_part(std::size_t i, raster_state& state) {
+  for (const std::uint32_t root : sweep_.roots()) straight_part_block(root, i, state);
+}
+
+void clearance_field::straight_part_block(std::uint32_t index, std::size_t i, raster_state& state) {
+  const ego_sweep::block& b = sweep_.blocks()[index];
+  if (state.hit.all_in(b.begin, b.end)) return;
+  ++work_.bound_checks;
+  const straight_motion part = straight_motion_of(i, b.centre);
+  const bool record = !state.hit_at.empty();
+  const auto mark = [&](std::size_t q, double when) {
+    state.hit.set(q);
+    if (record) state.hit_at[q] = when;
+  };
+  if (b.second == 0) {
+    // A single sample: `collisions_reference`'s test, bit for bit.
+    if (straight_bound(part) > 0.0) return;
+    if (straight_collides(part)) mark(b.begin, record ? part_start_[slot(i)] + straight_first_contact(part) : 0.0);
+    return;
+  }
+  // Every sample's footprint lies within the block's spread of the centre's, a spread that grows
+  // linearly along the straight part: the centre's distances less it bound every sample's.
+  const widening& grown = sweep_.straight_spread(index);
+  const widening spread{grown.base + grown.rate * (part_start_[slot(i)] - sweep_.window().horizon), grown.rate};
+  if (straight_bound(part) - (spread.base + spread.rate * part.motion.duration) > 0.0) return;
+  const double margin = sweep_.window().margin;
+  if (shapes_ == shape_pair::general) {
+    const translation_minimum low = straight_minimum(part);
+    if (low.distance - (spread.base + spread.rate * part.motion.duration) > 0.0) return;
+    if (!record && low.distance + (spread.base + spread.rate * low.time) + rounding_slack <= 0.0) {
+      for (std::size_t q = b.begin; q < b.end; ++q) mark(q, 0.0);
+      return;
+    }
+  } else {
+    // Clear when the centre's face separation stays above the margin and the spread; every sample
+    // overlaps when it falls below minus the spread where it is the centre's signed distance (two
+    // rectangles overlapping; a disc whose centre is inside the rectangle, less its radius).
+    if (!straight_reaches(part, {margin + spread.base, spread.rate})) return;
+    const double inside = shapes_ == shape_pair::rectangle_disc ? obstacle_radius_ : 0.0;
+    if (!record && straight_reaches(part, {-spread.base - inside - rounding_slack, -spread.rate})) {
+      for (std::size_t q = b.begin; q < b.end; ++q) mark(q, 0.0);
+      return;
+    }
+  }
+  straight_part_block(index + 1, i, state);
+  straight_part_block(b.second, i, state);
+}
+
+bool clearance_field::straight_collides(const straight_motion& part) {
+  ++work_.translation_minima;
+  const double margin = sweep_.window().margin;
+  const placement& e = part.ego;
+  const obstacle_at& o = part.obstacle;
+  const placed_rectangle ego{e.position, e.direction, ego_half_.x, ego_half_.y};
+  if (shapes_ == shape_pair::rectangles) {
+    return signed_distance_reaches(ego, placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y},
+                                   part.motion, margin);
+  }
+  if (shapes_ == shape_pair::rectangle_disc) {
+    return signed_distance_reaches(ego, o.position, obstacle_radius_, part.motion, margin);
+  }
+  return straight_part_minimum(sweep_.ego().shape, e, obstacle_.shape, o, part.motion).distance - margin <= 0.0;
+}
+
+bool clearance_field::straight_reaches(const straight_motion& part, const widening& level) {
+  ++work_.translation_minima;
+  const placement& e = part.ego;
+  const obstacle_at& o = part.obstacle;
+  const placed_rectangle ego{e.position, e.direction, ego_half_.x, ego_half_.y};
+  if (shapes_ == shape_pair::rectangles) {
+    return face_separation_reaches(
+        ego, placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y}, part.motion, level);
+  }
+  return face_separation_reaches(ego, o.position, obstacle_radius_, part.motion, level);
+}
+
+clearance_field::straight_motion clearance_field::straight_motion_of(std::size_t i, std::size_t m) const {
+  const std::size_t s = slot(i);
+  const double start = part_start_[s];
+  const double horizon = sweep_.window().horizon;
+  const ego_sweep::line line = sweep_.straight_line(m);
+  const vec2 position = start > horizon ? line.start + (start - horizon) * line.velocity : line.start;
+  return {{position, sweep_.straight_direction(m)},
+          part_obstacle_[s],
+          {line.velocity - part_velocity_[s], sweep_.window().duration - start}};
+}
+
+translation_minimum clearance_field::straight_minimum(const straight_motion& part) {
+  return straight_minimum(part, straight_separation(part));
+}
+
+clearance_field::straight_lower_bound clearance_field::straight_separation(const straight_motion& part) {
+  ++work_.translation_minima;
+  const double margin = sweep_.window().margin;
+  const placement& e = part.ego;
+  const obstacle_at& o = part.obstacle;
+  translation_minimum low;
+  bool overlapping = true;
+  if (shapes_ == shape_pair::rectangles) {
+    low = smallest_face_separation(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y},
+                                   placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y},
+                                   part.motion);
+    overlapping = low.distance <= 0.0;
+  } else if (shapes_ == shape_pair::rectangle_disc) {
+    low = smallest_face_separation(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y}, o.position,
+                                   obstacle_radius_, part.motion);
+    overlapping = low.distance + obstacle_radius_ <= 0.0;
+  } else {
+    low = straight_part_minimum(sweep_.ego().shape, e, obstacle_.shape, o, part.motion);
+  }
+  const translation_minimum stage = low;
+  low.distance -= margin;
+  return {low, stage, overlapping};
+}
+
+translation_minimum clearance_field::straight_minimum(const straight_motion& part, const straight_lower_bound& separation) {
+  if (separation.exact) return separation.low;
+  const double margin = sweep_.window().margin;
+  const placement& e = part.ego;
+  const obstacle_at& o = part.obstacle;
+  const translation_minimum& stage = separation.stage;
+  translation_minimum low;
+  if (shapes_ == shape_pair::rectangles) {
+    low = smallest_signed_distance(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y},
+                                   placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y},
+                                   part.motion, stage);
+  } else {
+    low = smallest_signed_distance(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y}, o.position,
+                                   obstacle_radius_, part.motion, stage);
+  }
+  low.distance -= margin;
+  return low;
+}
+
+double clearance_field::straight_bound(const straight_motion& part) const {
+  const vec2 offset = part.ego.position - part.obstacle.position;
+  const vec2 w = part.motion.velocity;
+  const double speed_squared = squared_norm(w);
+  const double s = speed_squared > 0.0 ? std::clamp(-dot(offset, w) / speed_squared, 0.0, part.motion.duration) : 0.0;
+  return norm(offset + s * w) * (1.0 - 1e-12) - 1e-9 - reach_ - sweep_.window().margin;
+}
+
+double clearance_field::straight_first_contact(const straight_motion& part) const {
+  return straight_part_contact(sweep_.ego().shape, part.ego, obstacle_.shape, part.obstacle, part.motion,
+                               sweep_.window().margin);
 }
 
 clearance_field::obstacle_at clearance_field::obstacle_pose(std::size_t i, std::size_t k) const {
@@ -738,19 +1006,26 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   const std::size_t i = slot(forecast);
   if (inert_) return cap_;
   if (!exact_[i].empty() && exact_[i][m]) return sets_[i][m];
-  const std::size_t count = sweep_.times().size();
+  const std::size_t sampled = part_first_[i];
   const double step = sweep_.window().time_step;
   const double margin = sweep_.window().margin;
   const double centre = centre_rate(m);
   const double rate = distance_rate(m);
+  const double theta = sample_threshold(m);
+  // The straight part first, in closed form (at or above the walking cap every value clamps alike,
+  // so a bound there is enough).
+  const straight_motion part = straight_motion_of(forecast, m);
+  double straight = walk_cap_;
+  if (straight_bound(part) < walk_cap_) straight = std::min(straight, straight_minimum(part).distance);
   // A seed: the value at the time the sampled minimum of the same sample under a neighbouring
-  // forecast time, or of a neighbouring sample, was found (any sample time gives a valid seed).
-  // The walks then skip every time that provably lies above it by more than the argmin tolerance
-  // (such a time cannot become the argmin of the running minimum, so the result is that of a walk
-  // over every time); the seed's own time is looked at as any other.
+  // forecast time, or of a neighbouring sample, was found (any sample time before this straight
+  // part gives a valid seed). The walks then skip every time that provably lies above it by more
+  // than the argmin tolerance (such a time cannot become the argmin of the running minimum, so the
+  // result is that of a walk over every time); the seed's own time is looked at as any other.
   std::uint32_t seed_time = none;
   const auto known_argmin = [&](std::size_t other, std::size_t sample) {
-    if (seed_time == none && other < argmin_.size() && sample < sweep_.sample_count() && !argmin_[other].empty()) {
+    if (seed_time == none && other < argmin_.size() && sample < sweep_.sample_count() && !argmin_[other].empty() &&
+        argmin_[other][sample] < sampled) {
       seed_time = argmin_[other][sample];
     }
   };
@@ -759,13 +1034,13 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   known_argmin(i, m - 1);  // its neighbours in the sample order
   known_argmin(i, m + 1);
   double seed = std::numeric_limits<double>::infinity();
-  if (seed_time != none) {
+  if (seed_time != none && straight > -walk_cap_) {
     const ego_sweep::placement p = sweep_.at(seed_time, m);
     ++work_.distance_evaluations;
     seed = distance(p.position, p.direction, obstacle_pose(i, seed_time)) - margin + 3.0 * argmin_tolerance;
   }
   // Looks at time index k and returns the next one that can be below the running minimum (or the
-  // walking cap: above it every value clamps to the cap; or the seed).
+  // walking cap: above it every value clamps to the cap; or the ceiling).
   const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r, double ceiling) {
     // Every value below −walk_cap clamps to −cap: once the minimum is there, nothing can change it.
     if (std::min(r.value, walk_cap_) <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
@@ -780,23 +1055,32 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
     r.update(at.value, k);
     return first_possible(k, at.value - std::min({r.value, walk_cap_, ceiling}), rate, step);
   };
-  // The shared times first (kept for larger τ), then this τ's straight part. A seed from a shared
-  // time is a value every larger τ shares, so it may prune the shared walk too.
-  if (prefix_of_.empty()) prefix_of_.assign(sweep_.sample_count(), none);
-  if (prefix_of_[m] == none) {
-    prefix_of_[m] = static_cast<std::uint32_t>(prefix_.size());
-    prefix_.emplace_back();
+  running_minimum r;
+  if (straight > -walk_cap_) {
+    // The shared times first (kept for larger τ), then this τ's own sample times. A seed from a
+    // shared time is a value every larger τ shares, so it may prune the shared walk too. A sample
+    // time at least 2θ above the straight part's minimum cannot matter, nor can its refinement
+    // (every time of its bracket lies within half a step of a sample time at least as high, or of
+    // the straight part): it bounds this τ's own walk.
+    if (prefix_of_.empty()) prefix_of_.assign(sweep_.sample_count(), none);
+    if (prefix_of_[m] == none) {
+      prefix_of_[m] = static_cast<std::uint32_t>(prefix_.size());
+      prefix_.emplace_back();
+    }
+    prefix_walk& prefix = prefix_[prefix_of_[m]];
+    const std::size_t shared = shared_end(i);
+    if (prefix.until > shared) prefix = prefix_walk{};
+    const double shared_seed = seed_time < shared ? seed : std::numeric_limits<double>::infinity();
+    for (; prefix.next < shared;) prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum, shared_seed);
+    prefix.until = shared;
+    r = prefix.minimum;
+    const double ceiling = std::min(seed, straight + 2.0 * theta + 3.0 * argmin_tolerance);
+    for (std::size_t k = prefix.next; k < sampled;) k = look(k, obstacle_pose(i, k), r, ceiling);
   }
-  prefix_walk& prefix = prefix_[prefix_of_[m]];
-  const std::size_t shared = first_straight_[i];
-  if (prefix.until > shared) prefix = prefix_walk{};
-  const double shared_seed = seed_time < shared ? seed : std::numeric_limits<double>::infinity();
-  for (; prefix.next < shared;) prefix.next = look(prefix.next, turning_[prefix.next], prefix.minimum, shared_seed);
-  prefix.until = shared;
-  running_minimum r = prefix.minimum;
-  for (std::size_t k = prefix.next; k < count;) k = look(k, obstacle_pose(i, k), r, seed);
-  double c = r.value;
-  if (c > -walk_cap_ && c < walk_cap_) c = std::min(c, refined_at(i, m, r.argmin, r.at_argmin));
+  double c = std::min(r.value, straight);
+  if (r.value > -walk_cap_ && r.value < walk_cap_ && r.value < straight + 2.0 * theta) {
+    c = std::min(c, refined_at(i, m, r.argmin, r.at_argmin));
+  }
   c = std::clamp(c, -cap_, cap_);
   ++work_.exact_values;
   if (exact_[i].empty()) exact_[i].assign(sweep_.sample_count(), 0);
@@ -813,21 +1097,27 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
 double clearance_field::exact_below(std::size_t forecast, std::size_t m, double ceiling) {
   const std::size_t i = slot(forecast);
   if (is_exact(forecast, m) || ceiling >= cap_) return exact(forecast, m);
-  const std::size_t count = sweep_.times().size();
+  const std::size_t count = part_first_[i];
   const double step = sweep_.window().time_step;
   const double margin = sweep_.window().margin;
   const double centre = centre_rate(m);
   const double rate = distance_rate(m);
-  // Sampled values at or above this keep every value in between, and so the refined minimum,
-  // at or above the ceiling: between samples the signed distance falls by at most L·step/2.
-  const double limit = ceiling + refinement_threshold(rate, step);
+  // Sampled values at or above this keep every value in between, and so the refined minimum, at or
+  // above the ceiling when the straight part is: every time of a refinement's bracket lies within
+  // half a step of a sample time, or within a step of the straight part, and the signed distance
+  // changes no faster than L.
+  const double limit = ceiling + 2.0 * refinement_threshold(rate, step);
   if (limit >= walk_cap_) return exact(forecast, m);  // the exact walk prunes as much
   if (const double below_all = floor_of_all(m); below_all >= ceiling) return below_all;
   std::vector<double>& floor = floor_[i];
   if (!floor.empty() && floor[m] >= ceiling) return floor[m];
+  {
+    const straight_motion part = straight_motion_of(forecast, m);
+    if (straight_bound(part) < ceiling && straight_minimum(part).distance < ceiling) return exact(forecast, m);
+  }
   std::size_t k = 0;
-  // A walk over the shared times t ≤ τ_i (kept from an earlier exact value) bounds them all.
-  const std::size_t shared = first_straight_[i];
+  // A walk over the shared times (kept from an earlier exact value) bounds them all.
+  const std::size_t shared = shared_end(i);
   if (const prefix_walk* prefix = walked_prefix(m); shared > 0 && prefix != nullptr && prefix->until >= shared) {
     if (std::min(prefix->minimum.value, walk_cap_) < limit) return exact(forecast, m);
     k = shared;
@@ -933,46 +1223,61 @@ std::vector<clearance_set> clearances_reference(const ego_state& ego, const mane
   const std::vector<double> times = sample_times(window.duration, window.time_step);
   std::vector<clearance_set> result;
   for (const double tau : forecast_times) {
+    const double start = straight_part_start(obstacle, tau, window);
+    const std::size_t sampled = first_at_or_after(times, start);
     clearance_set clearance(samples.size());
     for (std::size_t m = 0; m < samples.size(); ++m) {
       const maneuver& u = samples.maneuvers[m];
       const auto at = [&](double t) { return clearance_at(ego, u, obstacle, tau, t, window); };
       running_minimum r;
-      for (std::size_t k = 0; k < times.size(); ++k) r.update(at(times[k]), k);
-      clearance[m] = std::min(r.value, refined_minimum(times, r.argmin, at, r.at_argmin));
+      for (std::size_t k = 0; k < sampled; ++k) r.update(at(times[k]), k);
+      double c = r.value;
+      if (sampled > 0) c = std::min(c, refined_minimum(times, r.argmin, at, r.at_argmin));
+      const straight_setup part = straight_setup_of(ego, u, obstacle, tau, start, window);
+      const double straight =
+          straight_part_minimum(ego.shape, part.ego, obstacle.shape, part.obstacle, part.motion).distance - window.margin;
+      clearance[m] = std::min(c, straight);
     }
     result.push_back(std::move(clearance));
   }
   return result;
 }
 
-std::vector<sample_mask> sampled_collisions_reference(const ego_state& ego, const maneuver_samples& samples,
-                                                      const forecast_obstacle& obstacle,
-                                                      std::span<const double> forecast_times,
-                                                      const collision_window& window) {
+std::vector<sample_mask> collisions_reference(const ego_state& ego, const maneuver_samples& samples,
+                                              const forecast_obstacle& obstacle, std::span<const double> forecast_times,
+                                              const collision_window& window) {
   std::vector<sample_mask> sets;
   for (const double tau : forecast_times) {
     sample_mask set(samples.size());
-    const std::vector<std::uint32_t> first = first_overlaps_reference(ego, samples, obstacle, tau, window);
+    const std::vector<double> first = first_overlaps_reference(ego, samples, obstacle, tau, window);
     for (std::size_t m = 0; m < samples.size(); ++m) {
-      if (first[m] != clearance_field::no_overlap) set.set(m);
+      if (first[m] != no_collision) set.set(m);
     }
     sets.push_back(std::move(set));
   }
   return sets;
 }
 
-std::vector<std::uint32_t> first_overlaps_reference(const ego_state& ego, const maneuver_samples& samples,
-                                                    const forecast_obstacle& obstacle, double forecast_time,
-                                                    const collision_window& window) {
+std::vector<double> first_overlaps_reference(const ego_state& ego, const maneuver_samples& samples,
+                                             const forecast_obstacle& obstacle, double forecast_time,
+                                             const collision_window& window) {
   const std::vector<double> times = sample_times(window.duration, window.time_step);
-  std::vector<std::uint32_t> first(samples.size(), clearance_field::no_overlap);
+  const double start = straight_part_start(obstacle, forecast_time, window);
+  const std::size_t sampled = first_at_or_after(times, start);
+  std::vector<double> first(samples.size(), no_collision);
   for (std::size_t m = 0; m < samples.size(); ++m) {
-    for (std::size_t k = 0; k < times.size(); ++k) {
-      if (clearance_at(ego, samples.maneuvers[m], obstacle, forecast_time, times[k], window) <= 0.0) {
-        first[m] = static_cast<std::uint32_t>(k);
+    const maneuver& u = samples.maneuvers[m];
+    for (std::size_t k = 0; k < sampled; ++k) {
+      if (clearance_at(ego, u, obstacle, forecast_time, times[k], window) <= 0.0) {
+        first[m] = times[k];
         break;
       }
+    }
+    if (first[m] != no_collision) continue;
+    const straight_setup part = straight_setup_of(ego, u, obstacle, forecast_time, start, window);
+    if (straight_part_collides(ego.shape, part.ego, obstacle.shape, part.obstacle, part.motion, window.margin)) {
+      first[m] = start + straight_part_contact(ego.shape, part.ego, obstacle.shape, part.obstacle, part.motion,
+                                               window.margin);
     }
   }
   return first;

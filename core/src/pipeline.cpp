@@ -156,6 +156,7 @@ class evaluator {
       work.bound_checks += w.bound_checks;
       work.distance_evaluations += w.distance_evaluations;
       work.refinements += w.refinements;
+      work.translation_minima += w.translation_minima;
     }
     std::size_t assignments = 0;
     for (const auto& [key, room] : rooms_) {
@@ -219,7 +220,7 @@ class evaluator {
     c.assign(samples_.size(), clearance_cap);
     for (const auto& [j, i] : parts) {
       if (fields_[j].inert()) continue;
-      fields_[j].sampled_collisions(i).for_each([&](std::size_t m) { c[m] = -clearance_cap; });
+      fields_[j].collisions(i).for_each([&](std::size_t m) { c[m] = -clearance_cap; });
     }
     if (!rough) make_read_values_exact(parts, c);
   }
@@ -233,7 +234,7 @@ class evaluator {
     if (parts.empty()) return clearance_cap;
     if (parts.size() == 1) return fields_[parts.front().first].exact(parts.front().second, m);
     const auto known = [&](std::size_t j, std::size_t i) {
-      return fields_[j].is_exact(i, m) || fields_[j].sampled_collisions(i).test(m);
+      return fields_[j].is_exact(i, m) || fields_[j].collisions(i).test(m);
     };
     double value = clearance_cap;
     const std::span<const std::pair<double, std::size_t>> order = by_floor(m);
@@ -650,18 +651,16 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     if (options.reference) {
       first_collision = first_collision_times(ego, samples.maneuvers, relevant, assigned_tau, window);
     } else {
-      // The first sample time at which each maneuver overlaps an obstacle, from the raster of each
-      // obstacle's assigned forecast time (the sampled collisions' own test, recorded when it hits).
+      // When each maneuver first overlaps an obstacle, from the raster of each obstacle's assigned
+      // forecast time (the collisions' own test, recorded when it hits).
       first_collision.assign(samples.size(), no_collision);
       for (std::size_t j = 0; j < n; ++j) {  // n > 0: there is a sweep
-        const std::vector<double>& times = sweep->times();
         std::vector<std::uint8_t> only(tau_count, 0);
         only[assignment[j]] = 1;
         const clearance_field field(*sweep, relevant[j], taus, clearance_cap, only, raster,
                                     clearance_field::recording::first_overlaps);
         for (std::size_t m = 0; m < samples.size(); ++m) {
-          const std::uint32_t k = field.first_overlap(assignment[j], m);
-          if (k != clearance_field::no_overlap) first_collision[m] = std::min(first_collision[m], times[k]);
+          first_collision[m] = std::min(first_collision[m], field.first_overlap(assignment[j], m));
         }
       }
     }

@@ -83,23 +83,24 @@ TEST(collision_sets, fast_clearances_equal_the_clamped_brute_force_ones_bit_for_
   });
 }
 
-TEST(collision_sets, the_raster_finds_exactly_the_samples_that_overlap_at_a_sample_time) {
-  // Straight after construction, before any value is asked for: the sampled collisions are those of
-  // a test of every sample at every sample time, and the entries are −cap there and +cap elsewhere.
+TEST(collision_sets, the_raster_finds_exactly_the_samples_that_overlap_at_a_sample_time_or_on_the_straight_part) {
+  // Straight after construction, before any value is asked for: the collisions are those of a test
+  // of every sample at every sample time before the straight part and of the closed form on it, and
+  // the entries are −cap there and +cap elsewhere.
   constexpr double cap = 2.0;
   std::size_t colliding = 0;
   std::size_t between_samples = 0;
   for_each_brute_force_case(testing::property_seed() + 3, [&](const brute_force_case& c, const std::vector<double>& taus) {
     const clearance_field field(c.sweep, c.obstacle, taus, cap);
-    const auto sampled = sampled_collisions_reference(c.in.ego, c.p.samples, c.obstacle, taus, c.p.window);
+    const auto sampled = collisions_reference(c.in.ego, c.p.samples, c.obstacle, taus, c.p.window);
     for (std::size_t i = 0; i < taus.size(); ++i) {
       for (std::size_t m = 0; m < c.p.samples.size(); ++m) {
         const bool expected = sampled[i].test(m);
-        ASSERT_EQ(field.sampled_collisions(i).test(m), expected)
+        ASSERT_EQ(field.collisions(i).test(m), expected)
             << "tau " << taus[i] << " sample " << m << " brute force " << c.brute[i][m] << "\n"
             << testing::describe(c.in);
         ASSERT_EQ(field.set(i)[m], expected ? -cap : cap) << "tau " << taus[i] << " sample " << m;
-        // A sampled overlap is a negative clearance; the converse fails only between samples.
+        // An overlap is a clearance ≤ 0; the converse fails only between sample times.
         if (expected) {
           ASSERT_LE(c.brute[i][m], 0.0);
         }
@@ -110,7 +111,56 @@ TEST(collision_sets, the_raster_finds_exactly_the_samples_that_overlap_at_a_samp
     }
   });
   EXPECT_GT(colliding, 0u);
-  std::printf("sampled collisions: %zu, contacts only between sample times: %zu\n", colliding, between_samples);
+  std::printf("collisions: %zu, contacts only between sample times: %zu\n", colliding, between_samples);
+}
+
+TEST(collision_sets, every_pair_of_shapes_gets_the_collisions_and_clearances_of_its_reference) {
+  // The raster's closed forms differ by shape pair: two rectangles, a rectangle and a disc, any
+  // other pair (a polygon obstacle, or a disc-shaped ego). Each obstacle of the two-obstacle scenes
+  // is made a disc (up to 2 m: where a block is decided by its centre's face separation, a disc
+  // centre outside the rectangle must not count as inside), a hexagon or kept a rectangle in turn,
+  // and the ego a disc in every fourth trial; the clearances are compared in every fifth trial.
+  constexpr double cap = 2.0;
+  std::mt19937_64 rng(testing::property_seed() + 37);
+  std::uniform_real_distribution<double> radius(0.3, 2.0);
+  const std::vector<double> taus = forecast_times(planner_config{});
+  std::size_t colliding = 0;
+  for (std::size_t trial = 0; trial < testing::property_count(120); ++trial) {
+    plan_input in = two_obstacle_scene(rng, trial);
+    if (trial % 4 == 3) in.ego.shape = disc{1.2};
+    for (std::size_t j = 0; j < in.obstacles.size(); ++j) {
+      switch ((trial + j) % 3) {
+        case 0:
+          in.obstacles[j].shape = disc{radius(rng)};
+          break;
+        case 1:
+          in.obstacles[j].shape = convex_polygon{{{1.5, 0.0}, {0.8, 0.9}, {-0.8, 0.9}, {-1.5, 0.0}, {-0.8, -0.9}, {0.8, -0.9}}};
+          break;
+        default:
+          break;
+      }
+    }
+    const prepared p = prepare(in, 0.05);
+    const ego_sweep sweep(in.ego, p.samples, p.window);
+    for (const forecast_obstacle& obstacle : p.obstacles) {
+      const auto expected = collisions_reference(in.ego, p.samples, obstacle, taus, p.window);
+      const clearance_field field(sweep, obstacle, taus, cap);
+      for (std::size_t i = 0; i < taus.size(); ++i) {
+        ASSERT_EQ(field.collisions(i), expected[i]) << "trial " << trial << " tau " << taus[i] << "\n" << testing::describe(in);
+        colliding += expected[i].count();
+      }
+      if (trial % 5 != 0) continue;
+      const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
+      const auto fast = clearances(sweep, obstacle, taus, cap);
+      for (std::size_t i = 0; i < taus.size(); ++i) {
+        for (std::size_t m = 0; m < p.samples.size(); ++m) {
+          ASSERT_EQ(fast[i][m], std::clamp(brute[i][m], -cap, cap))
+              << "trial " << trial << " tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
+        }
+      }
+    }
+  }
+  EXPECT_GT(colliding, 0u);
 }
 
 TEST(collision_sets, a_field_rastered_in_reused_scratch_equals_a_fresh_one_bit_for_bit) {
@@ -137,9 +187,9 @@ TEST(collision_sets, a_field_rastered_in_reused_scratch_equals_a_fresh_one_bit_f
       ASSERT_EQ(reused.inert(), fresh.inert()) << testing::describe(in);
       for (std::size_t i = 0; i < taus.size(); ++i) {
         if (!fresh.evaluated(i)) continue;
-        ASSERT_EQ(reused.sampled_collisions(i), fresh.sampled_collisions(i))
+        ASSERT_EQ(reused.collisions(i), fresh.collisions(i))
             << "trial " << trial << " tau " << taus[i] << "\n" << testing::describe(in);
-        colliding += fresh.sampled_collisions(i).count();
+        colliding += fresh.collisions(i).count();
         for (std::size_t m = 0; m < p.samples.size(); ++m) {
           ASSERT_EQ(reused.exact(i, m), fresh.exact(i, m)) << "trial " << trial << " tau " << taus[i] << " sample " << m;
         }
@@ -149,7 +199,7 @@ TEST(collision_sets, a_field_rastered_in_reused_scratch_equals_a_fresh_one_bit_f
   EXPECT_GT(colliding, 0u);
 }
 
-TEST(collision_sets, recorded_first_overlaps_are_the_first_sample_times_at_which_each_sample_overlaps) {
+TEST(collision_sets, recorded_first_overlaps_are_the_first_times_at_which_each_sample_overlaps) {
   // One forecast time at a time (as the near-crash choice asks) and all at once, in one scratch.
   constexpr double cap = 2.0;
   std::size_t overlapping = 0;
@@ -160,12 +210,12 @@ TEST(collision_sets, recorded_first_overlaps_are_the_first_sample_times_at_which
       std::vector<std::uint8_t> only(taus.size(), 0);
       only[i] = 1;
       const clearance_field one(c.sweep, c.obstacle, taus, cap, only, scratch, clearance_field::recording::first_overlaps);
-      const std::vector<std::uint32_t> expected = first_overlaps_reference(c.in.ego, c.p.samples, c.obstacle, taus[i], c.p.window);
+      const std::vector<double> expected = first_overlaps_reference(c.in.ego, c.p.samples, c.obstacle, taus[i], c.p.window);
       for (std::size_t m = 0; m < c.p.samples.size(); ++m) {
         ASSERT_EQ(one.first_overlap(i, m), expected[m]) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(c.in);
         ASSERT_EQ(all.first_overlap(i, m), expected[m]) << "tau " << taus[i] << " sample " << m;
-        ASSERT_EQ(one.sampled_collisions(i).test(m), expected[m] != clearance_field::no_overlap);
-        overlapping += expected[m] != clearance_field::no_overlap ? 1 : 0;
+        ASSERT_EQ(one.collisions(i).test(m), expected[m] != no_collision);
+        overlapping += expected[m] != no_collision ? 1 : 0;
       }
       if (i + 1 < taus.size() && !one.forecast_independent()) {
         EXPECT_THROW((void)one.first_overlap(i + 1, 0), std::logic_error);  // its set was not computed

@@ -127,19 +127,23 @@ TEST(planner, work_counts_are_zero_without_relevant_obstacles_and_grow_with_inte
   far.obstacles.push_back(vehicle(7, {{300.0, 0.0}, pi}, 15.0, 0.0, far.time));
   const plan_work none = plan(far).work;
   EXPECT_EQ(none.relevant_obstacles, 0u);
-  EXPECT_EQ(none.bound_checks + none.distance_evaluations + none.refinements + none.assignments_evaluated, 0u);
+  EXPECT_EQ(none.bound_checks + none.distance_evaluations + none.refinements + none.translation_minima +
+                none.assignments_evaluated,
+            0u);
 
   const plan_input in = crossing_scene();
   const plan_work one = plan(in).work;
   EXPECT_EQ(one.relevant_obstacles, 1u);
   EXPECT_GT(one.bound_checks, 0u);
-  EXPECT_GT(one.distance_evaluations, 0u);
-  EXPECT_GT(one.refinements, 0u) << "the boundary crosses cells, whose corners are refined";
+  EXPECT_GT(one.distance_evaluations + one.translation_minima, 0u);
+  EXPECT_GT(one.refinements + one.translation_minima, 0u)
+      << "the boundary crosses cells, whose corners' minima are refined or found in closed form";
   // Deterministic, and never more distances than bound checks could have let through.
   const plan_work again = plan(in).work;
   EXPECT_EQ(again.bound_checks, one.bound_checks);
   EXPECT_EQ(again.distance_evaluations, one.distance_evaluations);
   EXPECT_EQ(again.refinements, one.refinements);
+  EXPECT_EQ(again.translation_minima, one.translation_minima);
   EXPECT_LE(one.distance_evaluations, one.bound_checks);
   // The reference path computes everything and reports no fast-path work.
   EXPECT_EQ(plan_reference(in).work.bound_checks, 0u);

@@ -56,10 +56,10 @@ void time_fields(const mm::plan_input& input, const mm::plan_result& r, int coun
       const mm::clearance_field field(sweep, obstacle, r.forecast_times, clearance_cap, {}, scratch);
       inert = field.inert();
       collisions = 0;
-      for (std::size_t f = 0; f < r.forecast_times.size(); ++f) collisions += field.sampled_collisions(f).count();
+      for (std::size_t f = 0; f < r.forecast_times.size(); ++f) collisions += field.collisions(f).count();
     }
     const std::chrono::duration<double, std::micro> elapsed = std::chrono::steady_clock::now() - start;
-    std::printf("field %u distance %.1f speed %.2f yaw_rate %.3f us %.1f inert %d sampled_collisions %zu\n",
+    std::printf("field %u distance %.1f speed %.2f yaw_rate %.3f us %.1f inert %d collisions %zu\n",
                 static_cast<unsigned>(input.obstacles[j].id),
                 mm::norm(obstacle.motion.pose.position - input.ego.pose.position), obstacle.motion.speed,
                 obstacle.motion.yaw_rate, elapsed.count() / count, inert ? 1 : 0, collisions);
@@ -82,8 +82,9 @@ int replan(const std::string& path, int repeat, int fields) {
   std::printf("forecast_time %.3f family %s command %.6f %.6f mode %s\n", r.forecast_time,
               std::string(mm::to_string(r.selected_family)).c_str(), r.command.acceleration, r.command.curvature,
               std::string(mm::to_string(r.mode)).c_str());
-  std::printf("relevant %zu bound_checks %zu distances %zu refinements %zu assignments %zu\n", r.work.relevant_obstacles,
-              r.work.bound_checks, r.work.distance_evaluations, r.work.refinements, r.work.assignments_evaluated);
+  std::printf("relevant %zu bound_checks %zu distances %zu refinements %zu translations %zu assignments %zu\n",
+              r.work.relevant_obstacles, r.work.bound_checks, r.work.distance_evaluations, r.work.refinements,
+              r.work.translation_minima, r.work.assignments_evaluated);
   for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
     std::printf("tau %.3f mi_brake %.4f mi_accelerate %.4f%s\n", r.forecast_times[i], r.mi_brake[i], r.mi_accelerate[i],
                 r.excluded[i] ? " excluded" : "");

@@ -12,6 +12,7 @@
 #include "mm/maneuver.hpp"
 #include "mm/maneuver_samples.hpp"
 #include "mm/sample_mask.hpp"
+#include "mm/translation.hpp"
 
 namespace mm {
 
@@ -24,12 +25,15 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
 /// executing the sample and an obstacle over the collision window. Negative ⇔ the sample collides
 /// [CSS]; the magnitude lets estimators place the boundary between samples. Clamped to ±cap.
 ///
-/// Precisely, with d_k the signed distance − margin at the sample times t_k (`sample_times`):
-/// min(min_k d_k, `refined_minimum` around the argmin of the d_k). The refinement searches the two
-/// steps around the sampled minimum, so the clearance is a value the signed distance really takes,
-/// at or below every sampled one. Whether a sample collides is decided by the samples
-/// (`clearance_field::sampled_collisions`) and, next to a colliding sample, by this value
-/// (docs/method.md §4.4).
+/// Precisely, with d(t) the signed distance − margin: the window splits at the start t_s of its
+/// straight part (`straight_part_start`: T_h for an obstacle that does not turn, else max(T_h, τ)),
+/// from which both footprints go straight at constant velocities. Before it, d is sampled at the
+/// sample times t_k < t_s (`sample_times`) and refined: min(min_k d_k, `refined_minimum` around the
+/// argmin of those d_k). On [t_s, T_c] the relative motion is a translation and min d has a closed
+/// form (`smallest_signed_distance`). The clearance is the smaller of the two: a value the signed
+/// distance really takes (up to rounding), at or below every sampled one. Whether a sample collides
+/// is decided by the sample times before t_s, the closed form after it (`clearance_field::collisions`)
+/// and, next to a colliding sample, by this value (docs/method.md §4.4).
 using clearance_set = std::vector<double>;
 
 /// Largest speed [m/s] of any point of the ego footprint executing `u` over the window:
@@ -98,7 +102,12 @@ class ego_sweep {
     vec2 start;     ///< at T_h, world frame [m]
     vec2 velocity;  ///< [m/s]
   };
-  line straight_line(std::size_t m) const;
+  line straight_line(std::size_t m) const {
+    const straight_part& part = straight(m);
+    return {part.start, part.velocity};
+  }
+  /// The heading direction of sample m on its straight part (t ≥ T_h), world frame.
+  vec2 straight_direction(std::size_t m) const { return straight(m).direction; }
   /// Largest speed of sample m's reference point over the window [m/s].
   double sample_speed(std::size_t m) const { return sample_speed_[m]; }
   /// Largest speed of any point of the ego footprint executing sample m [m/s]: v_max (1 + |κ| R).
@@ -139,6 +148,16 @@ class ego_sweep {
   /// bounding radius (see the definition for the derivatives; docs/method.md §4.4). The signed
   /// distance of every sample of the block to a fixed obstacle lies within this of the centre's.
   double block_spread(const block& b, std::size_t k) const;
+  /// `block_spread` on the straight part as a function of time, valid at every t ≥ T_h [s]: there it
+  /// grows linearly, so it is `base` at T_h plus `rate`·(t − T_h), each rounded up. Computed once per
+  /// start and block.
+  const widening& straight_spread(std::uint32_t b) const {
+    if (!straight_spread_known_[b]) {
+      straight_spread_[b] = straight_spread_of(blocks_[b]);
+      straight_spread_known_[b] = 1;
+    }
+    return straight_spread_[b];
+  }
   /// Most the velocity of the reference point of a sample of block b can differ from the centre
   /// sample's at time index k [m/s] (the same mean-value bound for the velocity).
   double velocity_spread(const block& b, std::size_t k) const;
@@ -182,6 +201,8 @@ class ego_sweep {
     vec2 along;       ///< heading direction there, in the ego frame
     double speed;     ///< at T_h [m/s]
     vec2 direction;   ///< heading direction in the world
+    vec2 start;       ///< arc end point in the world [m]
+    vec2 velocity;    ///< speed × direction [m/s]
   };
 
   /// A placement without default member initialisers, so the cache is allocated uninitialised.
@@ -217,6 +238,9 @@ class ego_sweep {
   /// Upper bounds of the arc length at time t ≤ T_h and of the speed at T_h of a sample of acceleration a.
   double arc_length_bound(double a, double t) const;
   double speed_bound(double a) const;
+  widening straight_spread_of(const block& b) const;
+  mutable std::vector<widening> straight_spread_;       ///< [block]: `straight_spread`, where known
+  mutable std::vector<std::uint8_t> straight_spread_known_;
   std::vector<block> blocks_;
   std::vector<std::uint32_t> roots_;
   std::vector<std::uint32_t> order_;
@@ -228,16 +252,17 @@ class ego_sweep {
 /// The collision sets of one obstacle for every forecast time, computed only as far as the
 /// indices need them (spec §5, §6).
 ///
-/// Signs: for every forecast time τ_i the samples that overlap the obstacle at some sample time
-/// (`sampled_collisions`, the sampled [CSS]) are found exactly, equal to a brute-force test of every
-/// sample at every sample time. Values: the clearance of a sample is computed on demand (`exact`)
-/// and is then equal, bit for bit, to `clearances_reference` clamped to ±cap; it can be ≤ 0 where no
-/// sample time overlaps (a contact between samples). Until then an entry of `set` reads −cap for a
-/// sampled collision and +cap otherwise. The interpolating indices read values only at the ends of
-/// grid edges whose ends differ in sign (and at saddle cells); the planner makes those exact and
-/// takes a contact between samples next to a colliding sample as a collision (docs/method.md §4.4).
+/// Signs: for every forecast time τ_i the samples that overlap the obstacle at a sample time before
+/// the straight part of the window, or at any time of it (`collisions`, [CSS]; see `clearance_set`)
+/// are found exactly, equal to a brute-force test of every sample (`collisions_reference`). Values:
+/// the clearance of a sample is computed on demand (`exact`) and is then equal, bit for bit, to
+/// `clearances_reference` clamped to ±cap; it can be ≤ 0 where no sample time overlaps (a contact
+/// between samples before the straight part). Until then an entry of `set` reads −cap for a
+/// collision and +cap otherwise. The interpolating indices read values only at the ends of grid
+/// edges whose ends differ in sign (and at saddle cells); the planner makes those exact and takes a
+/// contact between samples next to a colliding sample as a collision (docs/method.md §4.4).
 ///
-/// How the sampled signs are found cheaply, each step exact:
+/// How the signs are found cheaply, each step exact:
 /// - forecasts agree up to τ, so the times t ≤ τ_i are rastered once and shared by larger τ;
 /// - blocks of samples (`ego_sweep::block`) are decided whole: a block whose centre sample's
 ///   clearance bound exceeds the block's spread is clear at that time, one whose centre overlaps
@@ -247,7 +272,11 @@ class ego_sweep {
 ///   points' distance, from how fast that distance changes now (an obstacle moving away is not
 ///   looked at again soon). Every forecast moves no faster than these allow, so a wait found on the
 ///   shared times holds for the straight part of every forecast time that shares them;
-/// - a sample or block known to collide is not looked at again for that τ.
+/// - a sample or block known to collide is not looked at again for that τ;
+/// - on the straight part of the window (from `straight_part_start`) each block is tested once, in
+///   closed form: its centre's smallest distance over the whole part (`smallest_signed_distance`)
+///   against the block's largest spread there, after a cheaper test of the reference points'
+///   closest approach.
 /// Holds mutable caches (the exact values): one field must not be used by two threads at once.
 class clearance_field {
  public:
@@ -261,7 +290,7 @@ class clearance_field {
   /// carried over: a field built with one equals a field built without, bit for bit). Saves
   /// every field's allocation and initialisation of a list link per block of the sweep.
   class raster_scratch;
-  /// What a field keeps of its sampled collisions: which samples collide, or also when.
+  /// What a field keeps of its collisions: which samples collide, or also when.
   enum class recording : std::uint8_t { collisions, first_overlaps };
   /// The same, rastering in `scratch`, which no other field may use at the same time; with
   /// `recording::first_overlaps` it also keeps when each sample first overlaps (`first_overlap`).
@@ -272,11 +301,12 @@ class clearance_field {
   std::size_t forecast_count() const { return taus_.size(); }
   /// True when the set of forecast time i was computed (`wanted`).
   bool evaluated(std::size_t i) const { return wanted_.empty() || wanted_[i] != 0; }
-  /// Entry [m] of forecast time i: the exact clearance where known, else −cap for a sampled
-  /// collision and +cap otherwise.
+  /// Entry [m] of forecast time i: the exact clearance where known, else −cap for a collision and
+  /// +cap otherwise.
   const clearance_set& set(std::size_t i) const { return materialized(slot(i)); }
-  /// The samples that overlap the obstacle forecast with forecast time i at some sample time.
-  const sample_mask& sampled_collisions(std::size_t i) const { return sampled_[slot(i)]; }
+  /// The samples that overlap the obstacle forecast with forecast time i at a sample time before
+  /// the straight part or at any time of it: `collisions_reference`.
+  const sample_mask& collisions(std::size_t i) const { return sampled_[slot(i)]; }
   bool is_exact(std::size_t i, std::size_t m) const {
     const std::vector<std::uint8_t>& e = exact_[slot(i)];
     return inert_ || (!e.empty() && e[m] != 0);
@@ -285,23 +315,23 @@ class clearance_field {
   double exact(std::size_t i, std::size_t m);
   /// `exact(i, m)` when that can be below `ceiling` [m]; otherwise a value ≥ `ceiling` (then
   /// `exact(i, m)` ≥ `ceiling` too), found by a walk that stops looking at a sample time once it
-  /// is provably ≥ ceiling + L·step/2. What a minimum over obstacles needs from an obstacle that
-  /// cannot lower it.
+  /// is provably ≥ ceiling + L·step, and a bound of the straight part. What a minimum over
+  /// obstacles needs from an obstacle that cannot lower it.
   double exact_below(std::size_t i, std::size_t m, double ceiling);
   /// A lower bound of the clearance of sample m under every forecast time [m], found once per sample
   /// and kept: the closest the obstacle's bounding disc can come to the sample's at a sample time,
-  /// less how far the signed distance can fall between sample times.
+  /// less how far the signed distance can fall between sample times (so a bound of the signed
+  /// distance at every time of the window).
   double floor_of_all(std::size_t m);
-  /// True when some sample overlaps the obstacle forecast with forecast time i at a sample time.
+  /// True when some sample collides with the obstacle forecast with forecast time i (`collisions`).
   bool collides(std::size_t i) const { return !sampled_[slot(i)].none(); }
-  /// Returned by `first_overlap` for a sample that overlaps at no sample time.
-  static constexpr std::uint32_t no_overlap = std::numeric_limits<std::uint32_t>::max();
-  /// Index of the first sample time at which sample m overlaps the obstacle forecast with forecast
-  /// time i (signed distance − margin ≤ 0, as `sampled_collisions`), or `no_overlap`: equal to
-  /// `first_overlaps_reference`. Only for a field built with `recording::first_overlaps`, and a
+  /// When sample m first overlaps the obstacle forecast with forecast time i [s] (signed distance −
+  /// margin ≤ 0, as `collisions`): the first such sample time before the straight part, else the
+  /// first such time of the straight part (`first_contact`, to 1e-9 s), else `no_collision`; equal
+  /// to `first_overlaps_reference`. Only for a field built with `recording::first_overlaps`, and a
   /// forecast time whose set it computed (one it evaluated, or any when the obstacle does not turn);
   /// else std::logic_error.
-  std::uint32_t first_overlap(std::size_t i, std::size_t m) const;
+  double first_overlap(std::size_t i, std::size_t m) const;
   /// True when the obstacle stays farther than the cap from every sample at every time under
   /// every forecast time: every clearance is exactly +cap, so the obstacle changes nothing.
   bool inert() const { return inert_; }
@@ -317,6 +347,7 @@ class clearance_field {
     std::size_t distance_evaluations = 0;  ///< signed distances at sample times
     std::size_t exact_values = 0;          ///< clearances made exact
     std::size_t refinements = 0;           ///< refinements of a sampled minimum run (`refined_minimum`)
+    std::size_t translation_minima = 0;    ///< closed-form minima over the straight part (`smallest_signed_distance`)
   };
   const work& statistics() const { return work_; }
 
@@ -361,7 +392,7 @@ class clearance_field {
     sample_mask hit;
     std::vector<std::uint32_t> head;  ///< [k]: first block waiting for time index k
     std::vector<std::uint32_t> link;  ///< [block]: the next in the same list (read only for blocks in a list)
-    std::vector<std::uint32_t> hit_at;  ///< [position in tree order]: time index of the hit (read only where hit; empty when not recorded)
+    std::vector<double> hit_at;  ///< [position in tree order]: time of the first overlap [s] (read only where hit; empty when not recorded)
     /// No sample hit, every list empty, for `samples` samples, `times` time indices and `blocks`
     /// blocks, recording when samples are hit if `record`; keeps the buffers' memory (`link` and
     /// `hit_at` are written before they are read, so not cleared).
@@ -386,6 +417,45 @@ class clearance_field {
   void raster(std::size_t k, const obstacle_at& o, raster_state& state);
   /// `raster` of block `index` (and its halves when it is undecided as a whole).
   void raster_block(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state);
+  /// Marks in `state` every sample not marked yet that overlaps the obstacle forecast with forecast
+  /// time i at some time of the straight part (the closed form, block by block from the roots).
+  void raster_straight_part(std::size_t i, raster_state& state);
+  /// `raster_straight_part` of block `index` (and its halves when it is undecided as a whole).
+  void straight_part_block(std::uint32_t index, std::size_t i, raster_state& state);
+  /// The relative motion of sample m and the obstacle on the straight part of forecast time i:
+  /// both placed at its start, and the translation of the ego relative to the obstacle to T_c.
+  struct straight_motion {
+    placement ego;
+    obstacle_at obstacle;
+    translation motion;
+  };
+  straight_motion straight_motion_of(std::size_t i, std::size_t m) const;
+  /// The smallest signed distance − margin of sample m over the straight part of forecast time i
+  /// [m], and when it is reached (after the part's start) [s]: `smallest_signed_distance`.
+  translation_minimum straight_minimum(const straight_motion& part);
+  /// Its first stage for rectangles and discs, `smallest_face_separation` − margin: a lower bound,
+  /// and the minimum itself when `exact` (the footprints overlap there, or general shapes, whose
+  /// minimum is computed whole).
+  struct straight_lower_bound {
+    translation_minimum low;    ///< − margin
+    translation_minimum stage;  ///< as `smallest_face_separation` returned it
+    bool exact;
+  };
+  straight_lower_bound straight_separation(const straight_motion& part);
+  /// True when sample m collides with the obstacle on the straight part: `straight_minimum` ≤ 0,
+  /// decided as `collisions_reference` decides it (`signed_distance_reaches` for rectangles and discs).
+  bool straight_collides(const straight_motion& part);
+  /// For rectangles and discs: true when the face separation comes within `level`(s) at some time of
+  /// the straight part (`face_separation_reaches`).
+  bool straight_reaches(const straight_motion& part, const widening& level);
+  /// `straight_minimum` from its first stage, bit for bit.
+  translation_minimum straight_minimum(const straight_motion& part, const straight_lower_bound& separation);
+  /// A lower bound of `straight_minimum` [m]: the closest approach of the reference points, less the
+  /// bounding radii and the margin (a few operations).
+  double straight_bound(const straight_motion& part) const;
+  /// Time [s] of the first overlap of sample m on the straight part, from the part's start
+  /// (`first_contact` at level margin), or +∞.
+  double straight_first_contact(const straight_motion& part) const;
   /// Rates of sample m: of its reference point's distance and of the signed distance [m/s].
   double centre_rate(std::size_t m) const { return sweep_.sample_speed(m) + obstacle_.motion.speed; }
   double distance_rate(std::size_t m) const { return sweep_.sample_point_speed(m) + obstacle_turn_speed_; }
@@ -418,6 +488,12 @@ class clearance_field {
   std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k (every τ when ω = 0)
   std::vector<obstacle_at> turn_end_;        ///< [i]: placement at τ_i, where the straight part starts
   std::vector<std::size_t> first_straight_;  ///< [i]: first k with t_k > τ_i (none when ω = 0)
+  std::vector<double> part_start_;           ///< [slot]: t_s, start of the straight part of the window (`straight_part_start`) [s]
+  std::vector<std::size_t> part_first_;      ///< [slot]: first k with t_k ≥ t_s: the sample times before it are sampled
+  std::vector<obstacle_at> part_obstacle_;   ///< [slot]: obstacle placement at t_s
+  std::vector<vec2> part_velocity_;          ///< [slot]: obstacle velocity on the straight part [m/s]
+  /// End of the times shared by every forecast time from i on: min(first_straight_, part_first_).
+  std::size_t shared_end(std::size_t i) const { return std::min(first_straight_[i], part_first_[slot(i)]); }
   vec2 heading_direction_;      ///< (cos, sin) of the obstacle's heading now
   double obstacle_turn_speed_;  ///< largest speed of an obstacle point [m/s]: v + |ω| R
   double obstacle_acceleration_ = 0.0;  ///< of the obstacle's reference point while it turns [m/s²]: v |ω|
@@ -434,7 +510,7 @@ class clearance_field {
   clearance_set& materialized(std::size_t i) const;
   mutable std::vector<clearance_set> sets_;  ///< [slot][m] (empty until `materialized`)
   std::vector<sample_mask> sampled_;  ///< [slot]: the sampled collisions
-  std::vector<std::vector<std::uint32_t>> first_overlap_;  ///< [slot][m]: `first_overlap` (only when recorded, for the slots computed)
+  std::vector<std::vector<double>> first_overlap_;  ///< [slot][m]: `first_overlap` (only when recorded, for the slots computed)
   std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
   std::unique_ptr<double[]> floor_all_;  ///< [m]: `floor_of_all` where `floor_all_known_` (allocated, uninitialised, on first use)
   sample_mask floor_all_known_;
@@ -464,31 +540,36 @@ class clearance_field::raster_scratch {
   raster_state own_;
 };
 
-/// The sampled collision sets of one obstacle for every forecast time, by brute force (the
-/// reference for `clearance_field::sampled_collisions`): mask i holds the samples whose signed
-/// distance − margin is ≤ 0 at some sample time of the window under `forecast_times[i]`.
-std::vector<sample_mask> sampled_collisions_reference(const ego_state& ego, const maneuver_samples& samples,
-                                                      const forecast_obstacle& obstacle,
-                                                      std::span<const double> forecast_times,
-                                                      const collision_window& window);
+/// Start t_s [s] of the straight part of the window under forecast time τ [s], from which the ego
+/// (after T_h) and the obstacle (after τ) both go straight at constant velocities: T_h when the
+/// obstacle does not turn (ω = 0: every forecast is straight), else max(T_h, τ); at most T_c.
+double straight_part_start(const forecast_obstacle& obstacle, double forecast_time, const collision_window& window);
 
-/// The reference for `clearance_field::first_overlap`, by brute force: entry [m] is the index of
-/// the first sample time of the window at which sample m's signed distance − margin to the obstacle
-/// forecast with `forecast_time` is ≤ 0, or `clearance_field::no_overlap`.
-std::vector<std::uint32_t> first_overlaps_reference(const ego_state& ego, const maneuver_samples& samples,
-                                                    const forecast_obstacle& obstacle, double forecast_time,
-                                                    const collision_window& window);
+/// The collision sets of one obstacle for every forecast time, by brute force (the reference for
+/// `clearance_field::collisions`): mask i holds the samples whose signed distance − margin under
+/// `forecast_times[i]` is ≤ 0 at some sample time before `straight_part_start`, or whose
+/// `smallest_signed_distance` − margin over the straight part is ≤ 0.
+std::vector<sample_mask> collisions_reference(const ego_state& ego, const maneuver_samples& samples,
+                                              const forecast_obstacle& obstacle, std::span<const double> forecast_times,
+                                              const collision_window& window);
+
+/// The reference for `clearance_field::first_overlap`, by brute force: entry [m] is the first sample
+/// time before the straight part at which sample m's signed distance − margin to the obstacle
+/// forecast with `forecast_time` is ≤ 0, else its first such time on the straight part
+/// (`first_contact`), else `no_collision` [s].
+std::vector<double> first_overlaps_reference(const ego_state& ego, const maneuver_samples& samples,
+                                             const forecast_obstacle& obstacle, double forecast_time,
+                                             const collision_window& window);
 
 /// Clearances of one obstacle for every forecast time (spec §5): entry [i][m] is the signed
-/// clearance of sample m with the obstacle forecast with `forecast_times[i]` (ascending): the
-/// `refined_minimum` of the signed distance − margin over the sample times of the sweep, clamped
-/// to [−cap, cap]. A `clearance_field` made exact everywhere: equal, bit for bit, to
-/// `clearances_reference` clamped to ±cap.
+/// clearance (`clearance_set`) of sample m with the obstacle forecast with `forecast_times[i]`
+/// (ascending), clamped to [−cap, cap]. A `clearance_field` made exact everywhere: equal, bit for
+/// bit, to `clearances_reference` clamped to ±cap.
 std::vector<clearance_set> clearances(const ego_sweep& sweep, const forecast_obstacle& obstacle,
                                       std::span<const double> forecast_times, double cap);
 
-/// The reference for `clearances`: every sample, forecast time and sample time, no pruning, no cap;
-/// the same `refined_minimum`.
+/// The reference for `clearances`: every sample, forecast time and sample time before the straight
+/// part, no pruning, no cap; the same `refined_minimum` and `smallest_signed_distance`.
 std::vector<clearance_set> clearances_reference(const ego_state& ego, const maneuver_samples& samples,
                                                 const forecast_obstacle& obstacle,
                                                 std::span<const double> forecast_times,

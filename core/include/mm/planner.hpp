@@ -53,6 +53,7 @@ struct plan_work {
   std::size_t bound_checks = 0;          ///< (sample, time) pairs looked at through a lower bound
   std::size_t distance_evaluations = 0;  ///< signed distances at sample times
   std::size_t refinements = 0;           ///< refinements of a sampled clearance minimum (`refined_minimum`)
+  std::size_t translation_minima = 0;    ///< closed-form minima over the straight part of the window (`smallest_signed_distance`)
   std::size_t assignments_evaluated = 0; ///< forecast-time assignments whose room or rough room was computed (spec §9)
 };
 

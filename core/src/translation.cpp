@@ -1,0 +1,391 @@
+#include "mm/translation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+
+namespace mm {
+namespace {
+
+/// The line c + b·s.
+struct line {
+  double c;
+  double b;
+};
+
+/// Lowest point on [0, duration] of the upper envelope max_j (c_j + b_j s) of `lines`: convex and
+/// piecewise linear, so from s = 0 the walk follows the line that rises slowest among those on top
+/// (its right derivative) until a steeper one overtakes it, and stops where the envelope stops
+/// falling. Each step moves to a strictly steeper line: at most `count` steps.
+translation_minimum lowest_on_envelope(const line* lines, std::size_t count, double duration) {
+  std::size_t active = 0;
+  for (std::size_t j = 1; j < count; ++j) {
+    if (lines[j].c > lines[active].c || (lines[j].c == lines[active].c && lines[j].b > lines[active].b)) active = j;
+  }
+  double s = 0.0;
+  for (std::size_t step = 0; step < count && lines[active].b < 0.0; ++step) {
+    // The first crossing x = (c_a − c_j)/(b_j − b_a) of a steeper line, compared by cross-multiplying
+    // (the denominators are positive): one division per step.
+    const double ca = lines[active].c;
+    const double ba = lines[active].b;
+    double num = 0.0;
+    double den = 0.0;
+    std::size_t steeper = count;
+    for (std::size_t j = 0; j < count; ++j) {
+      const double rise = lines[j].b - ba;
+      if (!(rise > 0.0)) continue;
+      const double n = ca - lines[j].c;
+      if (steeper == count || n * den < num * rise || (n * den == num * rise && lines[j].b > lines[steeper].b)) {
+        num = n;
+        den = rise;
+        steeper = j;
+      }
+    }
+    if (steeper == count) {
+      s = duration;
+      break;
+    }
+    const double next = num / den;
+    if (!(next < duration)) {
+      s = duration;
+      break;
+    }
+    s = std::max(s, next);
+    active = steeper;
+  }
+  double value = lines[0].c + lines[0].b * s;
+  for (std::size_t j = 1; j < count; ++j) value = std::max(value, lines[j].c + lines[j].b * s);
+  return {value, s};
+}
+
+/// Smallest squared distance [m²] over s ∈ [0, duration] of the point `offset` + `velocity`·s from
+/// the origin, and its s.
+translation_minimum closest_approach_squared(vec2 offset, vec2 velocity, double duration) {
+  const double speed_squared = squared_norm(velocity);
+  const double s = speed_squared > 0.0 ? std::clamp(-dot(offset, velocity) / speed_squared, 0.0, duration) : 0.0;
+  return {squared_norm(offset + s * velocity), s};
+}
+
+/// The corners of a placed rectangle, as `place` computes them.
+std::array<vec2, 4> corners(const placed_rectangle& r) {
+  const vec2 along{r.axis.x * r.half_length, r.axis.y * r.half_length};
+  const vec2 across{-r.axis.y * r.half_width, r.axis.x * r.half_width};
+  return {r.centre + along + across, r.centre - along + across, r.centre - along - across, r.centre + along - across};
+}
+
+/// The lower of two minima (the earlier on a tie).
+translation_minimum lower(translation_minimum x, translation_minimum y) { return y.distance < x.distance ? y : x; }
+
+/// Bisection for the earliest s with `distance_at(s)` ≤ level, given the minimum of the convex
+/// `distance_at` on [0, duration].
+template <class DistanceAt>
+double earliest_at_or_below(DistanceAt&& distance_at, const translation_minimum& minimum, double level) {
+  if (distance_at(0.0) <= level) return 0.0;
+  if (minimum.distance > level) return std::numeric_limits<double>::infinity();
+  double lo = 0.0;
+  double hi = minimum.time;
+  while (hi - lo > 1e-9) {
+    const double mid = 0.5 * (lo + hi);
+    if (!(mid > lo && mid < hi)) break;
+    (distance_at(mid) <= level ? hi : lo) = mid;
+  }
+  return hi;
+}
+
+}  // namespace
+
+placed_rectangle moved(const placed_rectangle& a, vec2 displacement) {
+  return {a.centre + displacement, a.axis, a.half_length, a.half_width};
+}
+
+placed_footprint moved(const placed_footprint& a, vec2 displacement) {
+  placed_footprint m = a;
+  for (std::size_t i = 0; i < m.vertex_count; ++i) m.vertices[i] = m.vertices[i] + displacement;
+  m.centre = m.centre + displacement;
+  return m;
+}
+
+namespace {
+
+/// Along a face normal n of two rectangles: the centres' offset p = n·r₀ [m], its rate q = n·w
+/// [m/s] and the sum h of their half extents [m]; the separation along n at time s is |p + q s| − h.
+struct face_slab {
+  double offset;
+  double rate;
+  double half_extent;
+};
+
+std::array<face_slab, 4> face_slabs(const placed_rectangle& a, const placed_rectangle& b, vec2 velocity) {
+  const vec2 offset = a.centre - b.centre;
+  const vec2 a_side{-a.axis.y, a.axis.x};
+  const vec2 b_side{-b.axis.y, b.axis.x};
+  const double c = std::abs(dot(a.axis, b.axis));
+  const double s = std::abs(cross(a.axis, b.axis));
+  const std::array<vec2, 4> normals{a.axis, a_side, b.axis, b_side};
+  const std::array<double, 4> half_extents{a.half_length + (b.half_length * c + b.half_width * s),
+                                           a.half_width + (b.half_length * s + b.half_width * c),
+                                           b.half_length + (a.half_length * c + a.half_width * s),
+                                           b.half_width + (a.half_length * s + a.half_width * c)};
+  std::array<face_slab, 4> slabs{};
+  for (std::size_t n = 0; n < 4; ++n) slabs[n] = {dot(offset, normals[n]), dot(velocity, normals[n]), half_extents[n]};
+  return slabs;
+}
+
+/// A disc's centre in a rectangle's frame (x along its axis) [m], and its velocity there [m/s] when
+/// the rectangle translates at w: −w in that frame.
+struct local_centre {
+  double x;
+  double y;
+  double vx;
+  double vy;
+};
+
+local_centre centre_in_frame(const placed_rectangle& a, vec2 centre, vec2 w) {
+  const vec2 d = centre - a.centre;
+  const vec2 side{-a.axis.y, a.axis.x};
+  return {dot(d, a.axis), dot(d, side), -dot(w, a.axis), -dot(w, side)};
+}
+
+}  // namespace
+
+translation_minimum smallest_face_separation(const placed_rectangle& a, const placed_rectangle& b,
+                                             const translation& motion, const widening& less) {
+  std::array<line, 8> lines{};
+  const std::array<face_slab, 4> slabs = face_slabs(a, b, motion.velocity);
+  for (std::size_t n = 0; n < 4; ++n) {
+    const face_slab& f = slabs[n];
+    lines[2 * n] = {f.offset - f.half_extent - less.base, f.rate - less.rate};
+    lines[2 * n + 1] = {-f.offset - f.half_extent - less.base, -f.rate - less.rate};
+  }
+  return lowest_on_envelope(lines.data(), lines.size(), motion.duration);
+}
+
+translation_minimum smallest_signed_distance(const placed_rectangle& a, const placed_rectangle& b,
+                                             const translation& motion) {
+  return smallest_signed_distance(a, b, motion, smallest_face_separation(a, b, motion));
+}
+
+namespace {
+
+/// Whether the slabs α_j s ≤ β_j meet [0, duration]. The bounds β/α are kept as fractions with
+/// positive denominators and compared by cross-multiplying: no division.
+template <std::size_t count>
+bool slabs_meet(const std::array<line, count>& constraints, double duration) {
+  double lo_num = 0.0;
+  double lo_den = 1.0;
+  double hi_num = duration;
+  double hi_den = 1.0;
+  for (const line& c : constraints) {  // c.b·s ≤ c.c
+    if (c.b > 0.0) {
+      if (c.c * hi_den < hi_num * c.b) {
+        hi_num = c.c;
+        hi_den = c.b;
+      }
+    } else if (c.b < 0.0) {
+      if (-c.c * lo_den > lo_num * -c.b) {
+        lo_num = -c.c;
+        lo_den = -c.b;
+      }
+    } else if (c.c < 0.0) {
+      return false;
+    }
+  }
+  return lo_num * hi_den <= hi_num * lo_den;
+}
+
+translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion);
+translation_minimum apart_minimum(const placed_rectangle& a, vec2 centre, double radius, const translation& motion);
+
+}  // namespace
+
+bool face_separation_reaches(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
+                             const widening& level) {
+  // |p + q s| − h ≤ L₀ + L₁ s on both sides: (q − L₁) s ≤ h + L₀ − p and (−q − L₁) s ≤ h + L₀ + p.
+  std::array<line, 8> constraints{};
+  const std::array<face_slab, 4> slabs = face_slabs(a, b, motion.velocity);
+  for (std::size_t n = 0; n < 4; ++n) {
+    const face_slab& f = slabs[n];
+    const double room = f.half_extent + level.base;
+    constraints[2 * n] = {room - f.offset, f.rate - level.rate};
+    constraints[2 * n + 1] = {room + f.offset, -f.rate - level.rate};
+  }
+  return slabs_meet(constraints, motion.duration);
+}
+
+bool face_separation_reaches(const placed_rectangle& a, vec2 centre, double radius, const translation& motion,
+                             const widening& level) {
+  // |x + vx s| − hl − radius ≤ L₀ + L₁ s on both sides, and likewise for y.
+  const local_centre c = centre_in_frame(a, centre, motion.velocity);
+  const double along = a.half_length + radius + level.base;
+  const double across = a.half_width + radius + level.base;
+  const std::array<line, 4> constraints{{{along - c.x, c.vx - level.rate}, {along + c.x, -c.vx - level.rate},
+                                         {across - c.y, c.vy - level.rate}, {across + c.y, -c.vy - level.rate}}};
+  return slabs_meet(constraints, motion.duration);
+}
+
+bool signed_distance_reaches(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
+                             double level) {
+  if (!face_separation_reaches(a, b, motion, {level, 0.0})) return false;
+  if (level <= 0.0 || face_separation_reaches(a, b, motion, {0.0, 0.0})) return true;  // overlapping: it is the distance
+  return apart_minimum(a, b, motion).distance <= level;
+}
+
+bool signed_distance_reaches(const placed_rectangle& a, vec2 centre, double radius, const translation& motion,
+                             double level) {
+  if (!face_separation_reaches(a, centre, radius, motion, {level, 0.0})) return false;
+  if (level + radius <= 0.0 || face_separation_reaches(a, centre, radius, motion, {-radius, 0.0})) return true;
+  return apart_minimum(a, centre, radius, motion).distance <= level;
+}
+
+translation_minimum smallest_signed_distance(const placed_rectangle& a, const placed_rectangle& b,
+                                             const translation& motion, const translation_minimum& separation) {
+  if (separation.distance <= 0.0) return separation;
+  return apart_minimum(a, b, motion);
+}
+
+namespace {
+
+translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion) {
+  // Apart all along: every pair of corners along the motion, then the ends where their face
+  // separation (a lower bound of their distance) is below the closest pair.
+  const vec2 w = motion.velocity;
+  const double duration = motion.duration;
+  const double speed_squared = squared_norm(w);
+  const double inverse = speed_squared > 0.0 ? 1.0 / speed_squared : 0.0;
+  const std::array<vec2, 4> mine = corners(a);
+  const std::array<vec2, 4> theirs = corners(b);
+  double closest = std::numeric_limits<double>::infinity();
+  double at = 0.0;
+  for (const vec2& p : mine) {
+    for (const vec2& q : theirs) {
+      const vec2 d = p - q;
+      const double s = std::clamp(-dot(d, w) * inverse, 0.0, duration);
+      const double squared = squared_norm(d + s * w);
+      if (squared < closest) {
+        closest = squared;
+        at = s;
+      }
+    }
+  }
+  translation_minimum best{std::sqrt(closest), at};
+  if (face_separation(a, b) < best.distance) best = lower({corner_distance(a, b), 0.0}, best);
+  const placed_rectangle end = moved(a, duration * w);
+  if (face_separation(end, b) < best.distance) best = lower(best, {corner_distance(end, b), duration});
+  return best;
+}
+
+}  // namespace
+
+translation_minimum smallest_face_separation(const placed_rectangle& a, vec2 centre, double radius,
+                                             const translation& motion, const widening& less) {
+  const local_centre c = centre_in_frame(a, centre, motion.velocity);
+  const double hl = a.half_length + less.base;
+  const double hw = a.half_width + less.base;
+  const std::array<line, 4> lines{{{c.x - hl, c.vx - less.rate}, {-c.x - hl, -c.vx - less.rate},
+                                   {c.y - hw, c.vy - less.rate}, {-c.y - hw, -c.vy - less.rate}}};
+  const translation_minimum depth = lowest_on_envelope(lines.data(), lines.size(), motion.duration);
+  return {depth.distance - radius, depth.time};
+}
+
+translation_minimum smallest_signed_distance(const placed_rectangle& a, vec2 centre, double radius,
+                                             const translation& motion) {
+  return smallest_signed_distance(a, centre, radius, motion, smallest_face_separation(a, centre, radius, motion));
+}
+
+translation_minimum smallest_signed_distance(const placed_rectangle& a, vec2 centre, double radius,
+                                             const translation& motion, const translation_minimum& separation) {
+  if (separation.distance + radius <= 0.0) return separation;
+  return apart_minimum(a, centre, radius, motion);
+}
+
+namespace {
+
+translation_minimum apart_minimum(const placed_rectangle& a, vec2 centre, double radius, const translation& motion) {
+  const vec2 w = motion.velocity;
+  translation_minimum best{signed_distance(a, centre, radius), 0.0};
+  best = lower(best, {signed_distance(moved(a, motion.duration * w), centre, radius), motion.duration});
+  double closest = std::numeric_limits<double>::infinity();
+  double at = 0.0;
+  for (const vec2& p : corners(a)) {
+    const translation_minimum pair = closest_approach_squared(p - centre, w, motion.duration);
+    if (pair.distance < closest) {
+      closest = pair.distance;
+      at = pair.time;
+    }
+  }
+  if (const double corner = std::sqrt(closest) - radius; corner < best.distance) best = {corner, at};
+  return best;
+}
+
+}  // namespace
+
+translation_minimum smallest_signed_distance(const placed_footprint& a, const placed_footprint& b,
+                                             const translation& motion) {
+  const vec2 w = motion.velocity;
+  const double duration = motion.duration;
+  const double radii = a.radius + b.radius;
+  // Separation along every edge normal of a polygon core: the projections of a move by (w·n) s.
+  std::array<line, 4 * max_polygon_vertices> lines{};
+  std::size_t count = 0;
+  for (const placed_footprint* f : {&a, &b}) {
+    if (f->vertex_count < 3) continue;
+    for (std::size_t i = 0; i < f->vertex_count; ++i) {
+      const vec2 edge = f->vertices[(i + 1) % f->vertex_count] - f->vertices[i];
+      const double length = norm(edge);
+      if (length == 0.0) continue;
+      const vec2 n{-edge.y / length, edge.x / length};
+      double a_lo = std::numeric_limits<double>::infinity();
+      double a_hi = -a_lo;
+      double b_lo = a_lo;
+      double b_hi = -a_lo;
+      for (std::size_t k = 0; k < a.vertex_count; ++k) {
+        a_lo = std::min(a_lo, dot(a.vertices[k], n));
+        a_hi = std::max(a_hi, dot(a.vertices[k], n));
+      }
+      for (std::size_t k = 0; k < b.vertex_count; ++k) {
+        b_lo = std::min(b_lo, dot(b.vertices[k], n));
+        b_hi = std::max(b_hi, dot(b.vertices[k], n));
+      }
+      const double q = dot(w, n);
+      lines[count++] = {b_lo - a_hi, -q};
+      lines[count++] = {a_lo - b_hi, q};
+    }
+  }
+  if (count > 0) {
+    const translation_minimum separation = lowest_on_envelope(lines.data(), count, duration);
+    if (separation.distance <= 0.0) return {separation.distance - radii, separation.time};
+  }
+  translation_minimum best{signed_distance(a, b), 0.0};
+  best = lower(best, {signed_distance(moved(a, duration * w), b), duration});
+  double closest = std::numeric_limits<double>::infinity();
+  double at = 0.0;
+  for (std::size_t i = 0; i < a.vertex_count; ++i) {
+    for (std::size_t j = 0; j < b.vertex_count; ++j) {
+      const translation_minimum pair = closest_approach_squared(a.vertices[i] - b.vertices[j], w, duration);
+      if (pair.distance < closest) {
+        closest = pair.distance;
+        at = pair.time;
+      }
+    }
+  }
+  if (const double corner = std::sqrt(closest) - radii; corner < best.distance) best = {corner, at};
+  return best;
+}
+
+double first_contact(const placed_rectangle& a, const placed_rectangle& b, const translation& motion, double level) {
+  return earliest_at_or_below([&](double s) { return signed_distance(moved(a, s * motion.velocity), b); },
+                              smallest_signed_distance(a, b, motion), level);
+}
+
+double first_contact(const placed_rectangle& a, vec2 centre, double radius, const translation& motion, double level) {
+  return earliest_at_or_below([&](double s) { return signed_distance(moved(a, s * motion.velocity), centre, radius); },
+                              smallest_signed_distance(a, centre, radius, motion), level);
+}
+
+double first_contact(const placed_footprint& a, const placed_footprint& b, const translation& motion, double level) {
+  return earliest_at_or_below([&](double s) { return signed_distance(moved(a, s * motion.velocity), b); },
+                              smallest_signed_distance(a, b, motion), level);
+}
+
+}  // namespace mm
