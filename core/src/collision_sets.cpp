@@ -10,6 +10,23 @@
 #include <variant>
 
 namespace mm {
+namespace {
+
+/// Calls `visit` on the indices of [lo, hi) where a maximum over an extent can be: over an ascending
+/// range each of the extents' maxima is at one of its ends (the rounded differences and magnitudes
+/// are monotonic on either side of the centre), so two instead of all.
+template <class Visit>
+void for_extremes(bool ascending, std::size_t lo, std::size_t hi, Visit&& visit) {
+  if (ascending) {
+    visit(lo);
+    visit(hi - 1);
+  } else {
+    for (std::size_t i = lo; i < hi; ++i) visit(i);
+  }
+}
+
+}  // namespace
+
 
 double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obstacle& obstacle, double tau, double t,
                     const collision_window& window) {
@@ -20,20 +37,8 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
          window.margin;
 }
 
-struct ego_sweep::grid_view {
-  std::vector<std::size_t> row_start;  ///< sample index of each row's first column
-  std::vector<double> accelerations;   ///< [row] [m/s²]
-  std::vector<double> curvatures;      ///< [column] [1/m]
-  bool ascending = false;              ///< both lists ascending (non-strictly)
-  std::vector<double> arc_lengths;     ///< [row] arc length at T_h [m] (when ascending)
-  std::size_t sample(std::size_t r, std::size_t c) const { return row_start[r] + c; }
-};
-
-ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window)
-    : ego_(ego), samples_(samples), window_(window), sample_count_(samples.size()) {
-  ego_radius_ = bounding_radius(ego.shape);
-  // The blocks: the two families' grids stacked by acceleration (they share their curvatures),
-  // then their nominal-curvature columns.
+std::vector<ego_sweep::grid_view> ego_sweep::grids_of(const maneuver_samples& samples) {
+  // The two families' grids stacked by acceleration (they share their curvatures).
   const displacement_set& brake = samples.brake;
   const displacement_set& accelerate = samples.accelerate;
   const index_range brake_grid = samples.grid(family::brake);
@@ -68,40 +73,83 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
       grids.push_back(std::move(g));
     }
   }
+  for (grid_view& g : grids) {
+    g.ascending = std::is_sorted(g.accelerations.begin(), g.accelerations.end()) &&
+                  std::is_sorted(g.curvatures.begin(), g.curvatures.end());
+  }
+  return grids;
+}
+
+bool ego_sweep::same_shape(const std::vector<grid_view>& a, const std::vector<grid_view>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t g = 0; g < a.size(); ++g) {
+    if (a[g].row_start != b[g].row_start || a[g].curvatures.size() != b[g].curvatures.size() ||
+        a[g].ascending != b[g].ascending) {
+      return false;
+    }
+  }
+  return true;
+}
+
+ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window)
+    : ego_(ego), samples_(samples), window_(window), sample_count_(samples.size()) {
+  ego_radius_ = bounding_radius(ego.shape);
+  grids_ = grids_of(samples);
   order_.reserve(sample_count_);
   blocks_.reserve(2 * sample_count_);
-  for (grid_view& g : grids) add_root(g);
+  for (std::size_t g = 0; g < grids_.size(); ++g) roots_.push_back(add_block(grids_[g], g, 0, grids_[g].row_start.size(), 0, grids_[g].curvatures.size()));
   grid_blocks_ = blocks_.size();
   grid_order_ = order_.size();
   grid_roots_ = roots_.size();
-  start(ego, window, false);
+  start(ego, window, start_kind::fresh);
 }
 
-void ego_sweep::add_root(grid_view& grid) {
-  grid.ascending = std::is_sorted(grid.accelerations.begin(), grid.accelerations.end()) &&
-                   std::is_sorted(grid.curvatures.begin(), grid.curvatures.end());
-  if (grid.ascending) {
-    for (const double a : grid.accelerations) {
-      grid.arc_lengths.push_back(travelled_distance(ego_.speed, a, window_.horizon, ego_.limits.speed_cap));
-    }
+bool ego_sweep::can_restart(const ego_state& ego, const collision_window& window) const {
+  if (!(ego.limits == ego_.limits) || bounding_radius(ego.shape) != ego_radius_ || window.horizon != window_.horizon ||
+      samples_.size() != sample_count_) {
+    return false;
   }
-  roots_.push_back(add_block(grid, 0, grid.row_start.size(), 0, grid.curvatures.size()));
+  if (ego.speed == ego_.speed) return true;
+  // Sampled again: the grids must have the rows and columns they had (their values change).
+  std::size_t rows = 0;
+  for (const grid_view& g : grids_) rows += g.row_start.size();
+  return rows == samples_.brake.acceleration_count + samples_.accelerate.acceleration_count &&
+         !grids_.empty() && grids_.front().curvatures.size() == samples_.brake.curvature_count &&
+         samples_.brake.curvature_count == samples_.accelerate.curvature_count;
 }
 
 void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
-  if (ego.speed != ego_.speed || !(ego.limits == ego_.limits) || bounding_radius(ego.shape) != ego_radius_ ||
-      window.horizon != window_.horizon || samples_.size() != sample_count_) {
-    throw std::invalid_argument("ego_sweep::restart: the speed, limits, footprint radius, horizon or sample count differ");
+  if (!(ego.limits == ego_.limits) || bounding_radius(ego.shape) != ego_radius_ || window.horizon != window_.horizon ||
+      samples_.size() != sample_count_) {
+    throw std::invalid_argument("ego_sweep::restart: the limits, footprint radius, horizon or sample count differ");
   }
-  start(ego, window, true);
+  if (ego.speed == ego_.speed) {
+    start(ego, window, start_kind::same_speed);
+    return;
+  }
+  // Sampled again at a new speed: the tree's shape does not depend on the speed (`add_block`), nor
+  // do the accelerations; only the blocks' curvature extents are taken anew from the new grids.
+  std::vector<grid_view> grids = grids_of(samples_);
+  if (!same_shape(grids, grids_)) throw std::invalid_argument("ego_sweep::restart: the sampled grids changed shape");
+  for (std::size_t g = 0; g < grids.size(); ++g) {
+    if (grids[g].accelerations != grids_[g].accelerations) {
+      throw std::invalid_argument("ego_sweep::restart: the sampled accelerations changed");
+    }
+  }
+  grids_ = std::move(grids);
+  for (std::size_t b = 0; b < grid_blocks_; ++b) {
+    const block_range& r = ranges_[b];
+    fill_curvature_extents(grids_[r.grid], r, blocks_[b]);
+  }
+  start(ego, window, start_kind::new_speed);
 }
 
-void ego_sweep::start(const ego_state& ego, const collision_window& window, bool restarting) {
+void ego_sweep::start(const ego_state& ego, const collision_window& window, start_kind kind) {
   // The placements in the ego's frame depend only on the speed, the samples and the sample times
-  // (those of the previous start's window): a restart with the same times keeps them, except the
-  // nominal-curvature columns' (rewritten).
-  const bool same_times =
-      restarting && window.time_step == window_.time_step && window.duration == window_.duration;
+  // (those of the previous start's window): a restart at the same speed with the same times keeps
+  // them, except the nominal-curvature columns' (rewritten).
+  const bool same_times = kind == start_kind::same_speed && window.time_step == window_.time_step &&
+                          window.duration == window_.duration;
   ego_ = ego;
   window_ = window;
   times_ = sample_times(window.duration, window.time_step);
@@ -110,8 +158,9 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, bool
   const double cap = ego.limits.speed_cap;
   if (!straight_) straight_ = std::make_unique_for_overwrite<straight_part[]>(sample_count_);
   straight_known_.assign(sample_count_, 0);
-  // The grids' samples come first and do not change on a restart; the nominal-curvature columns follow.
-  const std::size_t kept = restarting ? samples_.brake.samples.size() + samples_.accelerate.samples.size() : 0;
+  // The grids' samples come first and do not change on a restart at the same speed; the
+  // nominal-curvature columns follow.
+  const std::size_t kept = kind == start_kind::same_speed ? samples_.brake.samples.size() + samples_.accelerate.samples.size() : 0;
   sample_speed_.resize(kept);
   sample_point_speed_.resize(kept);
   sample_speed_.reserve(sample_count_);
@@ -146,8 +195,9 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, bool
     reach_radius_.push_back(travel * (1.0 + 1e-12) + 1e-9);
   }
   // The nominal-curvature columns' blocks, after the grids' (which depend only on what `restart`
-  // requires to be unchanged).
+  // requires to be unchanged, and the grids' values).
   blocks_.resize(grid_blocks_);
+  ranges_.resize(grid_blocks_);
   order_.resize(grid_order_);
   roots_.resize(grid_roots_);
   grid_view nominal;
@@ -160,64 +210,68 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, bool
   }
   if (!nominal.row_start.empty()) {
     nominal.curvatures = {samples_.nominal_curvature};
-    add_root(nominal);
+    nominal.ascending = std::is_sorted(nominal.accelerations.begin(), nominal.accelerations.end());
+    roots_.push_back(add_block(nominal, grids_.size(), 0, nominal.row_start.size(), 0, 1));
   }
   straight_spread_.resize(blocks_.size());
   straight_spread_known_.assign(blocks_.size(), 0);
 }
 
-std::uint32_t ego_sweep::add_block(const grid_view& grid, std::size_t r0, std::size_t r1, std::size_t c0,
-                                   std::size_t c1) {
-  const auto index = static_cast<std::uint32_t>(blocks_.size());
-  blocks_.emplace_back();
-  const std::size_t rc = (r0 + r1 - 1) / 2;
-  const std::size_t cc = (c0 + c1 - 1) / 2;
-  block b;
-  b.begin = static_cast<std::uint32_t>(order_.size());
+void ego_sweep::fill_extents(const grid_view& grid, const block_range& r, block& b) {
+  const std::size_t rc = (r.r0 + r.r1 - 1) / 2;
+  const std::size_t cc = (r.c0 + r.c1 - 1) / 2;
   b.centre = static_cast<std::uint32_t>(grid.sample(rc, cc));
   const double a_centre = grid.accelerations[rc];
-  const double k_centre = grid.curvatures[cc];
+  b.acceleration_spread = 0.0;
   b.top_acceleration = a_centre;
-  // Over an ascending range each of these maxima is at one of its ends (the rounded differences
-  // and magnitudes are monotonic on either side of the centre): two values instead of all.
-  const auto rows = [&](std::size_t r) {
-    b.acceleration_spread = std::max(b.acceleration_spread, std::abs(grid.accelerations[r] - a_centre));
-    b.top_acceleration = std::max(b.top_acceleration, grid.accelerations[r]);
-    b.largest_deceleration = std::max(b.largest_deceleration, std::abs(grid.accelerations[r]));
-  };
-  const auto columns = [&](std::size_t c) {
+  b.largest_deceleration = 0.0;
+  for_extremes(grid.ascending, r.r0, r.r1, [&](std::size_t row) {
+    b.acceleration_spread = std::max(b.acceleration_spread, std::abs(grid.accelerations[row] - a_centre));
+    b.top_acceleration = std::max(b.top_acceleration, grid.accelerations[row]);
+    b.largest_deceleration = std::max(b.largest_deceleration, std::abs(grid.accelerations[row]));
+  });
+  fill_curvature_extents(grid, r, b);
+}
+
+void ego_sweep::fill_curvature_extents(const grid_view& grid, const block_range& r, block& b) {
+  const double k_centre = grid.curvatures[(r.c0 + r.c1 - 1) / 2];
+  b.curvature_spread = 0.0;
+  b.largest_curvature = 0.0;
+  for_extremes(grid.ascending, r.c0, r.c1, [&](std::size_t c) {
     b.curvature_spread = std::max(b.curvature_spread, std::abs(grid.curvatures[c] - k_centre));
     b.largest_curvature = std::max(b.largest_curvature, std::abs(grid.curvatures[c]));
-  };
-  if (grid.ascending) {
-    rows(r0);
-    rows(r1 - 1);
-    columns(c0);
-    columns(c1 - 1);
-  } else {
-    for (std::size_t r = r0; r < r1; ++r) rows(r);
-    for (std::size_t c = c0; c < c1; ++c) columns(c);
-  }
+  });
+}
+
+std::uint32_t ego_sweep::add_block(const grid_view& grid, std::size_t grid_index, std::size_t r0, std::size_t r1,
+                                   std::size_t c0, std::size_t c1) {
+  const auto index = static_cast<std::uint32_t>(blocks_.size());
+  blocks_.emplace_back();
+  const block_range range{static_cast<std::uint32_t>(grid_index), static_cast<std::uint32_t>(r0),
+                          static_cast<std::uint32_t>(r1), static_cast<std::uint32_t>(c0), static_cast<std::uint32_t>(c1)};
+  ranges_.push_back(range);
+  block b;
+  b.begin = static_cast<std::uint32_t>(order_.size());
+  fill_extents(grid, range, b);
   if (r1 - r0 == 1 && c1 - c0 == 1) {
     order_.push_back(b.centre);
   } else {
-    // Halve the side along which the samples' placements spread more (measured at T_h).
-    const double horizon = window_.horizon;
-    // The arc length at T_h of the block's top acceleration (that of its last row when ascending).
-    const double s = grid.ascending && b.top_acceleration == grid.accelerations[r1 - 1]
-                         ? grid.arc_lengths[r1 - 1]
-                         : travelled_distance(ego_.speed, b.top_acceleration, horizon, ego_.limits.speed_cap);
-    const double along_a = (grid.accelerations[r1 - 1] - grid.accelerations[r0]) * 0.5 * horizon * horizon;
-    const double along_k = (grid.curvatures[c1 - 1] - grid.curvatures[c0]) * s * (0.5 * s + ego_radius_);
-    const bool split_rows = c1 - c0 == 1 || (r1 - r0 > 1 && std::abs(along_a) >= std::abs(along_k));
+    // Halve the side with the larger spread of acceleration: longitudinal, Δa, or lateral, the
+    // a_lat,max · Δκ/κ_max that a change of curvature makes where the lateral limit binds — the
+    // spread of the placements at T_h away from low speeds, and independent of the speed, so that
+    // the tree's shape is too (`restart` keeps it at a new speed).
+    const double along_a = std::abs(grid.accelerations[r1 - 1] - grid.accelerations[r0]);
+    const double columns_spanned = grid.curvatures.size() > 1 ? static_cast<double>(grid.curvatures.size() - 1) : 1.0;
+    const double along_k = ego_.limits.max_lateral_acceleration * 2.0 * static_cast<double>(c1 - 1 - c0) / columns_spanned;
+    const bool split_rows = c1 - c0 == 1 || (r1 - r0 > 1 && along_a >= along_k);
     if (split_rows) {
       const std::size_t mid = (r0 + r1) / 2;
-      add_block(grid, r0, mid, c0, c1);
-      b.second = add_block(grid, mid, r1, c0, c1);
+      add_block(grid, grid_index, r0, mid, c0, c1);
+      b.second = add_block(grid, grid_index, mid, r1, c0, c1);
     } else {
       const std::size_t mid = (c0 + c1) / 2;
-      add_block(grid, r0, r1, c0, mid);
-      b.second = add_block(grid, r0, r1, mid, c1);
+      add_block(grid, grid_index, r0, r1, c0, mid);
+      b.second = add_block(grid, grid_index, r0, r1, mid, c1);
     }
   }
   b.end = static_cast<std::uint32_t>(order_.size());
@@ -787,7 +841,7 @@ void clearance_field::straight_part_block(std::uint32_t index, std::size_t i, ra
   };
   if (b.second == 0) {
     // A single sample: `collisions_reference`'s test, bit for bit.
-    if (straight_bound(part) > 0.0) return;
+    if (straight_apart(part, 0.0)) return;
     if (straight_collides(part)) mark(b.begin, record ? part_start_[slot(i)] + straight_first_contact(part) : 0.0);
     return;
   }
@@ -795,7 +849,7 @@ void clearance_field::straight_part_block(std::uint32_t index, std::size_t i, ra
   // linearly along the straight part: the centre's distances less it bound every sample's.
   const widening& grown = sweep_.straight_spread(index);
   const widening spread{grown.base + grown.rate * (part_start_[slot(i)] - sweep_.window().horizon), grown.rate};
-  if (straight_bound(part) - (spread.base + spread.rate * part.motion.duration) > 0.0) return;
+  if (straight_apart(part, spread.base + spread.rate * part.motion.duration)) return;
   const double margin = sweep_.window().margin;
   if (shapes_ == shape_pair::general) {
     const translation_minimum low = straight_minimum(part);
@@ -808,9 +862,10 @@ void clearance_field::straight_part_block(std::uint32_t index, std::size_t i, ra
     // Clear when the centre's face separation stays above the margin and the spread; every sample
     // overlaps when it falls below minus the spread where it is the centre's signed distance (two
     // rectangles overlapping; a disc whose centre is inside the rectangle, less its radius).
-    if (!straight_reaches(part, {margin + spread.base, spread.rate})) return;
+    const face_separations separations = straight_separations(part);
+    if (!separations.reach({margin + spread.base, spread.rate})) return;
     const double inside = shapes_ == shape_pair::rectangle_disc ? obstacle_radius_ : 0.0;
-    if (!record && straight_reaches(part, {-spread.base - inside - rounding_slack, -spread.rate})) {
+    if (!record && separations.reach({-spread.base - inside - rounding_slack, -spread.rate})) {
       for (std::size_t q = b.begin; q < b.end; ++q) mark(q, 0.0);
       return;
     }
@@ -819,7 +874,9 @@ void clearance_field::straight_part_block(std::uint32_t index, std::size_t i, ra
   straight_part_block(b.second, i, state);
 }
 
-bool clearance_field::straight_collides(const straight_motion& part) {
+bool clearance_field::straight_collides(const straight_motion& part) { return straight_within(part, 0.0); }
+
+bool clearance_field::straight_within(const straight_motion& part, double level) {
   ++work_.translation_minima;
   const double margin = sweep_.window().margin;
   const placement& e = part.ego;
@@ -827,24 +884,23 @@ bool clearance_field::straight_collides(const straight_motion& part) {
   const placed_rectangle ego{e.position, e.direction, ego_half_.x, ego_half_.y};
   if (shapes_ == shape_pair::rectangles) {
     return signed_distance_reaches(ego, placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y},
-                                   part.motion, margin);
+                                   part.motion, level + margin);
   }
   if (shapes_ == shape_pair::rectangle_disc) {
-    return signed_distance_reaches(ego, o.position, obstacle_radius_, part.motion, margin);
+    return signed_distance_reaches(ego, o.position, obstacle_radius_, part.motion, level + margin);
   }
-  return straight_part_minimum(sweep_.ego().shape, e, obstacle_.shape, o, part.motion).distance - margin <= 0.0;
+  return straight_part_minimum(sweep_.ego().shape, e, obstacle_.shape, o, part.motion).distance - margin <= level;
 }
 
-bool clearance_field::straight_reaches(const straight_motion& part, const widening& level) {
+face_separations clearance_field::straight_separations(const straight_motion& part) {
   ++work_.translation_minima;
   const placement& e = part.ego;
   const obstacle_at& o = part.obstacle;
   const placed_rectangle ego{e.position, e.direction, ego_half_.x, ego_half_.y};
   if (shapes_ == shape_pair::rectangles) {
-    return face_separation_reaches(
-        ego, placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y}, part.motion, level);
+    return {ego, placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y}, part.motion};
   }
-  return face_separation_reaches(ego, o.position, obstacle_radius_, part.motion, level);
+  return {ego, o.position, obstacle_radius_, part.motion};
 }
 
 clearance_field::straight_motion clearance_field::straight_motion_of(std::size_t i, std::size_t m) const {
@@ -905,12 +961,21 @@ translation_minimum clearance_field::straight_minimum(const straight_motion& par
   return low;
 }
 
-double clearance_field::straight_bound(const straight_motion& part) const {
+bool clearance_field::straight_apart(const straight_motion& part, double gap) const {
+  // The reference points' offset r₀ + w s stays farther than R from the origin on [0, S] when its
+  // squared length does: at s = 0, at s = S, or at the vertex, where it is |r₀ × w|²/|w|² —
+  // compared without division or square root.
+  const double radius = (gap + reach_ + sweep_.window().margin) * (1.0 + 1e-12) + 1e-9;
+  if (radius <= 0.0) return true;
+  const double limit = radius * radius;
   const vec2 offset = part.ego.position - part.obstacle.position;
   const vec2 w = part.motion.velocity;
+  const double along = dot(offset, w);
+  if (along >= 0.0) return squared_norm(offset) > limit;
   const double speed_squared = squared_norm(w);
-  const double s = speed_squared > 0.0 ? std::clamp(-dot(offset, w) / speed_squared, 0.0, part.motion.duration) : 0.0;
-  return norm(offset + s * w) * (1.0 - 1e-12) - 1e-9 - reach_ - sweep_.window().margin;
+  if (-along >= part.motion.duration * speed_squared) return squared_norm(offset + part.motion.duration * w) > limit;
+  const double across = cross(offset, w);
+  return across * across > limit * speed_squared;
 }
 
 double clearance_field::straight_first_contact(const straight_motion& part) const {
@@ -1016,7 +1081,7 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   // so a bound there is enough).
   const straight_motion part = straight_motion_of(forecast, m);
   double straight = walk_cap_;
-  if (straight_bound(part) < walk_cap_) straight = std::min(straight, straight_minimum(part).distance);
+  if (!straight_apart(part, walk_cap_)) straight = std::min(straight, straight_minimum(part).distance);
   // A seed: the value at the time the sampled minimum of the same sample under a neighbouring
   // forecast time, or of a neighbouring sample, was found (any sample time before this straight
   // part gives a valid seed). The walks then skip every time that provably lies above it by more
@@ -1112,8 +1177,9 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
   std::vector<double>& floor = floor_[i];
   if (!floor.empty() && floor[m] >= ceiling) return floor[m];
   {
+    // The straight part can be below the ceiling only where it comes within it (a threshold test).
     const straight_motion part = straight_motion_of(forecast, m);
-    if (straight_bound(part) < ceiling && straight_minimum(part).distance < ceiling) return exact(forecast, m);
+    if (!straight_apart(part, ceiling) && straight_within(part, ceiling + rounding_slack)) return exact(forecast, m);
   }
   std::size_t k = 0;
   // A walk over the shared times (kept from an earlier exact value) bounds them all.

@@ -8,10 +8,20 @@
 namespace mm {
 namespace {
 
-/// (x − sin x)/x³, continuous at 0.
+/// (x − sin x)/x³, continuous at 0. For |x| ≤ 1.5 its Taylor series Σ (−x²)ⁿ/(2n + 3)! to n = 9
+/// (the next term is below 3·10⁻¹⁷ of the sum): no cancellation, and no sine; beyond, the formula.
 double cubic_sine_defect(double x) {
   const double x2 = x * x;
-  if (std::abs(x) < 1e-2) return 1.0 / 6.0 - x2 / 120.0 + x2 * x2 / 5040.0;
+  if (std::abs(x) <= 1.5) {
+    // Horner in −x² with the coefficients 1/(2n + 3)!, n = 9 down to 0.
+    constexpr std::array<double, 10> inverse_factorials{
+        1.0 / 51090942171709440000.0, 1.0 / 121645100408832000.0, 1.0 / 355687428096000.0, 1.0 / 1307674368000.0,
+        1.0 / 6227020800.0,           1.0 / 39916800.0,           1.0 / 362880.0,           1.0 / 5040.0,
+        1.0 / 120.0,                  1.0 / 6.0};
+    double sum = 0.0;
+    for (const double c : inverse_factorials) sum = c - x2 * sum;
+    return sum;
+  }
   return (x - std::sin(x)) / (x2 * x);
 }
 

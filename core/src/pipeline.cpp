@@ -457,7 +457,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     if (cache->holds(ego, config.displacement_horizon, options.resolution)) {
       set_nominal_curvature(cache->samples, ego, nominal.curvature, config.displacement_horizon, false);
     } else {
-      cache->sweep.reset();
+      // Sampled again; the sweep on them keeps its tree of blocks when only the speed changed
+      // (`ego_sweep::restart`, checked below).
       cache->samples =
           sample_maneuvers(ego, nominal.curvature, config.displacement_horizon, options.resolution, false, false);
       cache->keep(ego, config.displacement_horizon, options.resolution);
@@ -519,7 +520,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   if (!options.reference && n > 0) {
     if (!reuse) {
       sweep = &own_sweep.emplace(ego, samples, window);
-    } else if (cache->sweep) {
+    } else if (cache->sweep && cache->sweep->can_restart(ego, window)) {
       cache->sweep->restart(ego, window);
       sweep = &*cache->sweep;
     } else {

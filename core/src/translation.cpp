@@ -108,15 +108,13 @@ placed_footprint moved(const placed_footprint& a, vec2 displacement) {
 
 namespace {
 
-/// Along a face normal n of two rectangles: the centres' offset p = n·r₀ [m], its rate q = n·w
-/// [m/s] and the sum h of their half extents [m]; the separation along n at time s is |p + q s| − h.
-struct face_slab {
-  double offset;
-  double rate;
-  double half_extent;
-};
+translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion);
+translation_minimum apart_minimum(const placed_rectangle& a, vec2 centre, double radius, const translation& motion);
 
-std::array<face_slab, 4> face_slabs(const placed_rectangle& a, const placed_rectangle& b, vec2 velocity) {
+}  // namespace
+
+face_separations::face_separations(const placed_rectangle& a, const placed_rectangle& b, const translation& motion)
+    : count_(4), duration_(motion.duration) {
   const vec2 offset = a.centre - b.centre;
   const vec2 a_side{-a.axis.y, a.axis.x};
   const vec2 b_side{-b.axis.y, b.axis.x};
@@ -127,38 +125,81 @@ std::array<face_slab, 4> face_slabs(const placed_rectangle& a, const placed_rect
                                            a.half_width + (b.half_length * s + b.half_width * c),
                                            b.half_length + (a.half_length * c + a.half_width * s),
                                            b.half_width + (a.half_length * s + a.half_width * c)};
-  std::array<face_slab, 4> slabs{};
-  for (std::size_t n = 0; n < 4; ++n) slabs[n] = {dot(offset, normals[n]), dot(velocity, normals[n]), half_extents[n]};
-  return slabs;
-}
-
-/// A disc's centre in a rectangle's frame (x along its axis) [m], and its velocity there [m/s] when
-/// the rectangle translates at w: −w in that frame.
-struct local_centre {
-  double x;
-  double y;
-  double vx;
-  double vy;
-};
-
-local_centre centre_in_frame(const placed_rectangle& a, vec2 centre, vec2 w) {
-  const vec2 d = centre - a.centre;
-  const vec2 side{-a.axis.y, a.axis.x};
-  return {dot(d, a.axis), dot(d, side), -dot(w, a.axis), -dot(w, side)};
-}
-
-}  // namespace
-
-translation_minimum smallest_face_separation(const placed_rectangle& a, const placed_rectangle& b,
-                                             const translation& motion, const widening& less) {
-  std::array<line, 8> lines{};
-  const std::array<face_slab, 4> slabs = face_slabs(a, b, motion.velocity);
   for (std::size_t n = 0; n < 4; ++n) {
-    const face_slab& f = slabs[n];
+    slabs_[n] = {dot(offset, normals[n]), dot(motion.velocity, normals[n]), half_extents[n]};
+  }
+}
+
+face_separations::face_separations(const placed_rectangle& a, vec2 centre, double radius, const translation& motion)
+    : count_(2), duration_(motion.duration) {
+  // The disc's centre in a's frame, as a point: its offset along a's two axes, each widened by the radius.
+  const vec2 offset = a.centre - centre;
+  const vec2 side{-a.axis.y, a.axis.x};
+  slabs_[0] = {dot(offset, a.axis), dot(motion.velocity, a.axis), a.half_length + radius};
+  slabs_[1] = {dot(offset, side), dot(motion.velocity, side), a.half_width + radius};
+}
+
+bool face_separations::reach(const widening& level) const {
+  // |p + q s| − h ≤ L₀ + L₁ s on both sides: (q − L₁) s ≤ h + L₀ − p and (−q − L₁) s ≤ h + L₀ + p.
+  // Each bound β/α of s is kept as a fraction with a positive denominator and compared by
+  // cross-multiplying: no division.
+  double lo_num = 0.0;
+  double lo_den = 1.0;
+  double hi_num = duration_;
+  double hi_den = 1.0;
+  bool empty = false;
+  const auto bound = [&](double alpha, double beta) {  // α s ≤ β
+    if (alpha > 0.0) {
+      if (beta * hi_den < hi_num * alpha) {
+        hi_num = beta;
+        hi_den = alpha;
+      }
+    } else if (alpha < 0.0) {
+      if (-beta * lo_den > lo_num * -alpha) {
+        lo_num = -beta;
+        lo_den = -alpha;
+      }
+    } else if (beta < 0.0) {
+      empty = true;
+    }
+  };
+  for (std::size_t n = 0; n < count_; ++n) {
+    const slab& f = slabs_[n];
+    const double room = f.half_extent + level.base;
+    bound(f.rate - level.rate, room - f.offset);
+    bound(-f.rate - level.rate, room + f.offset);
+  }
+  return !empty && lo_num * hi_den <= hi_num * lo_den;
+}
+
+translation_minimum face_separations::lowest(const widening& less) const {
+  std::array<line, 8> lines{};
+  for (std::size_t n = 0; n < count_; ++n) {
+    const slab& f = slabs_[n];
     lines[2 * n] = {f.offset - f.half_extent - less.base, f.rate - less.rate};
     lines[2 * n + 1] = {-f.offset - f.half_extent - less.base, -f.rate - less.rate};
   }
-  return lowest_on_envelope(lines.data(), lines.size(), motion.duration);
+  return lowest_on_envelope(lines.data(), 2 * count_, duration_);
+}
+
+translation_minimum smallest_face_separation(const placed_rectangle& a, const placed_rectangle& b,
+                                             const translation& motion, const widening& less) {
+  return face_separations(a, b, motion).lowest(less);
+}
+
+translation_minimum smallest_face_separation(const placed_rectangle& a, vec2 centre, double radius,
+                                             const translation& motion, const widening& less) {
+  return face_separations(a, centre, radius, motion).lowest(less);
+}
+
+bool face_separation_reaches(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
+                             const widening& level) {
+  return face_separations(a, b, motion).reach(level);
+}
+
+bool face_separation_reaches(const placed_rectangle& a, vec2 centre, double radius, const translation& motion,
+                             const widening& level) {
+  return face_separations(a, centre, radius, motion).reach(level);
 }
 
 translation_minimum smallest_signed_distance(const placed_rectangle& a, const placed_rectangle& b,
@@ -166,75 +207,25 @@ translation_minimum smallest_signed_distance(const placed_rectangle& a, const pl
   return smallest_signed_distance(a, b, motion, smallest_face_separation(a, b, motion));
 }
 
-namespace {
-
-/// Whether the slabs α_j s ≤ β_j meet [0, duration]. The bounds β/α are kept as fractions with
-/// positive denominators and compared by cross-multiplying: no division.
-template <std::size_t count>
-bool slabs_meet(const std::array<line, count>& constraints, double duration) {
-  double lo_num = 0.0;
-  double lo_den = 1.0;
-  double hi_num = duration;
-  double hi_den = 1.0;
-  for (const line& c : constraints) {  // c.b·s ≤ c.c
-    if (c.b > 0.0) {
-      if (c.c * hi_den < hi_num * c.b) {
-        hi_num = c.c;
-        hi_den = c.b;
-      }
-    } else if (c.b < 0.0) {
-      if (-c.c * lo_den > lo_num * -c.b) {
-        lo_num = -c.c;
-        lo_den = -c.b;
-      }
-    } else if (c.c < 0.0) {
-      return false;
-    }
-  }
-  return lo_num * hi_den <= hi_num * lo_den;
-}
-
-translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion);
-translation_minimum apart_minimum(const placed_rectangle& a, vec2 centre, double radius, const translation& motion);
-
-}  // namespace
-
-bool face_separation_reaches(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
-                             const widening& level) {
-  // |p + q s| − h ≤ L₀ + L₁ s on both sides: (q − L₁) s ≤ h + L₀ − p and (−q − L₁) s ≤ h + L₀ + p.
-  std::array<line, 8> constraints{};
-  const std::array<face_slab, 4> slabs = face_slabs(a, b, motion.velocity);
-  for (std::size_t n = 0; n < 4; ++n) {
-    const face_slab& f = slabs[n];
-    const double room = f.half_extent + level.base;
-    constraints[2 * n] = {room - f.offset, f.rate - level.rate};
-    constraints[2 * n + 1] = {room + f.offset, -f.rate - level.rate};
-  }
-  return slabs_meet(constraints, motion.duration);
-}
-
-bool face_separation_reaches(const placed_rectangle& a, vec2 centre, double radius, const translation& motion,
-                             const widening& level) {
-  // |x + vx s| − hl − radius ≤ L₀ + L₁ s on both sides, and likewise for y.
-  const local_centre c = centre_in_frame(a, centre, motion.velocity);
-  const double along = a.half_length + radius + level.base;
-  const double across = a.half_width + radius + level.base;
-  const std::array<line, 4> constraints{{{along - c.x, c.vx - level.rate}, {along + c.x, -c.vx - level.rate},
-                                         {across - c.y, c.vy - level.rate}, {across + c.y, -c.vy - level.rate}}};
-  return slabs_meet(constraints, motion.duration);
+translation_minimum smallest_signed_distance(const placed_rectangle& a, vec2 centre, double radius,
+                                             const translation& motion) {
+  return smallest_signed_distance(a, centre, radius, motion, smallest_face_separation(a, centre, radius, motion));
 }
 
 bool signed_distance_reaches(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
                              double level) {
-  if (!face_separation_reaches(a, b, motion, {level, 0.0})) return false;
-  if (level <= 0.0 || face_separation_reaches(a, b, motion, {0.0, 0.0})) return true;  // overlapping: it is the distance
+  const face_separations separations(a, b, motion);
+  if (!separations.reach({level, 0.0})) return false;
+  if (level <= 0.0 || separations.reach({0.0, 0.0})) return true;  // overlapping: it is the distance
   return apart_minimum(a, b, motion).distance <= level;
 }
 
 bool signed_distance_reaches(const placed_rectangle& a, vec2 centre, double radius, const translation& motion,
                              double level) {
-  if (!face_separation_reaches(a, centre, radius, motion, {level, 0.0})) return false;
-  if (level + radius <= 0.0 || face_separation_reaches(a, centre, radius, motion, {-radius, 0.0})) return true;
+  // The disc's centre inside the rectangle where its separation is ≤ −radius.
+  const face_separations separations(a, centre, radius, motion);
+  if (!separations.reach({level, 0.0})) return false;
+  if (level + radius <= 0.0 || separations.reach({-radius, 0.0})) return true;
   return apart_minimum(a, centre, radius, motion).distance <= level;
 }
 
@@ -276,22 +267,6 @@ translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectan
 }
 
 }  // namespace
-
-translation_minimum smallest_face_separation(const placed_rectangle& a, vec2 centre, double radius,
-                                             const translation& motion, const widening& less) {
-  const local_centre c = centre_in_frame(a, centre, motion.velocity);
-  const double hl = a.half_length + less.base;
-  const double hw = a.half_width + less.base;
-  const std::array<line, 4> lines{{{c.x - hl, c.vx - less.rate}, {-c.x - hl, -c.vx - less.rate},
-                                   {c.y - hw, c.vy - less.rate}, {-c.y - hw, -c.vy - less.rate}}};
-  const translation_minimum depth = lowest_on_envelope(lines.data(), lines.size(), motion.duration);
-  return {depth.distance - radius, depth.time};
-}
-
-translation_minimum smallest_signed_distance(const placed_rectangle& a, vec2 centre, double radius,
-                                             const translation& motion) {
-  return smallest_signed_distance(a, centre, radius, motion, smallest_face_separation(a, centre, radius, motion));
-}
 
 translation_minimum smallest_signed_distance(const placed_rectangle& a, vec2 centre, double radius,
                                              const translation& motion, const translation_minimum& separation) {

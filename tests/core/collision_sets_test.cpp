@@ -349,13 +349,15 @@ TEST(collision_sets, clearance_of_a_forecast_time_covers_the_shared_turning_part
 }
 
 TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
-  // Two planning steps of one vehicle at the same speed: a new pose, nominal curvature and window.
+  // Two planning steps of one vehicle: a new pose, nominal curvature and window, and in every third
+  // trial a new speed, at which the samples are sampled again (the tree of blocks is kept).
   std::mt19937_64 rng(testing::property_seed() + 11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (std::size_t trial = 0; trial < testing::property_count(20); ++trial) {
     const plan_input first = testing::random_scene(rng, {1, false});
     plan_input second = testing::random_scene(rng, {1, false});
-    second.ego.speed = first.ego.speed;
+    const bool new_speed = trial % 3 == 2;
+    if (!new_speed) second.ego.speed = first.ego.speed;
     second.ego.limits = first.ego.limits;
     second.ego.shape = first.ego.shape;
     second.nominal.curvature = (2.0 * unit(rng) - 1.0) * max_curvature(first.ego.speed, first.ego.limits);
@@ -366,7 +368,11 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
     for (std::size_t k = 0; k < restarted.times().size(); ++k) {
       for (std::size_t m = 0; m < samples.size(); ++m) restarted.at(k, m);
     }
-    set_nominal_curvature(samples, second.ego, second.nominal.curvature, second.config.displacement_horizon);
+    if (new_speed) {
+      samples = prepare(second, 0.05).samples;
+    } else {
+      set_nominal_curvature(samples, second.ego, second.nominal.curvature, second.config.displacement_horizon);
+    }
     // Every other trial the same sample times (the placements in the ego's frame are kept), the
     // others a new time step and duration.
     const collision_window window = trial % 2 == 0 ? collision_window{1.0, 3.0, 0.05, 0.3 * unit(rng)}
@@ -445,13 +451,22 @@ TEST(collision_sets, a_sweep_restarted_hundreds_of_times_places_as_a_new_one) {
   }
 }
 
-TEST(collision_sets, a_sweep_refuses_to_restart_at_another_speed) {
+TEST(collision_sets, a_sweep_refuses_to_restart_with_other_limits_or_a_grid_of_another_shape) {
   std::mt19937_64 rng(testing::property_seed() + 12);
   plan_input in = testing::random_scene(rng, {1, false});
-  const maneuver_samples samples = prepare(in, 0.05).samples;
+  maneuver_samples samples = prepare(in, 0.05).samples;
   ego_sweep sweep(in.ego, samples, {1.0, 3.0, 0.05, 0.0});
-  in.ego.speed += 0.5;
-  EXPECT_THROW(sweep.restart(in.ego, {1.0, 3.0, 0.05, 0.0}), std::invalid_argument);
+  plan_input other = in;
+  other.ego.limits.max_acceleration += 0.5;
+  EXPECT_FALSE(sweep.can_restart(other.ego, {1.0, 3.0, 0.05, 0.0}));
+  EXPECT_THROW(sweep.restart(other.ego, {1.0, 3.0, 0.05, 0.0}), std::invalid_argument);
+  // At a new speed the samples must have been sampled again with the same grid.
+  other = in;
+  other.ego.speed += 0.5;
+  other.config.resolution = {in.config.resolution.accelerations, in.config.resolution.curvatures + 2};
+  samples = prepare(other, 0.05).samples;
+  EXPECT_FALSE(sweep.can_restart(other.ego, {1.0, 3.0, 0.05, 0.0}));
+  EXPECT_THROW(sweep.restart(other.ego, {1.0, 3.0, 0.05, 0.0}), std::invalid_argument);
 }
 
 }  // namespace

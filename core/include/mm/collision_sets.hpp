@@ -71,13 +71,17 @@ class ego_sweep {
  public:
   ego_sweep(const ego_state& ego, const maneuver_samples& samples, const collision_window& window);
 
-  /// The sweep of a new planning step whose ego differs from this one's only in its pose (the
-  /// speed, limits, footprint radius and horizon equal), whose samples are the same object with
-  /// only the nominal-curvature columns rewritten (`set_nominal_curvature`), and whose window may
-  /// differ in its duration, time step and margin: equal, bit for bit, to a new
-  /// `ego_sweep(ego, samples, window)`, without building the grids' blocks again. Throws
-  /// std::invalid_argument when what must be unchanged changed.
+  /// The sweep of a new planning step whose ego differs from this one's in its pose and perhaps its
+  /// speed (the limits, footprint radius and horizon equal), whose samples are the same object,
+  /// with only the nominal-curvature columns rewritten (`set_nominal_curvature`) at the same speed,
+  /// or sampled again at the new speed with the same resolution, and whose window may differ in its
+  /// duration, time step and margin: equal, bit for bit, to a new `ego_sweep(ego, samples, window)`,
+  /// without building the tree of blocks again (its shape does not depend on the speed; at a new
+  /// speed the blocks' extents are taken anew). Throws std::invalid_argument when what must be
+  /// unchanged changed.
   void restart(const ego_state& ego, const collision_window& window);
+  /// True when `restart(ego, window)` would not throw.
+  bool can_restart(const ego_state& ego, const collision_window& window) const;
 
   const ego_state& ego() const { return ego_; }
   const maneuver_samples& samples() const { return samples_; }
@@ -183,17 +187,38 @@ class ego_sweep {
   /// walks of one sample over the window (exact values, floors) and a block's centre looked at on
   /// consecutive times read neighbouring memory.
   std::size_t placement_index(std::size_t k, std::size_t m) const { return m * time_count_ + k; }
-  /// Everything that depends on the pose, the window or the nominal curvature: the caches, the
-  /// speeds and reaches, the nominal-curvature columns' blocks.
-  /// `restarting`: the grids' samples and their speeds are those of the previous start (`restart`'s
-  /// precondition), so only the nominal-curvature columns' speeds are computed again.
-  void start(const ego_state& ego, const collision_window& window, bool restarting);
-  /// Adds the block of grid rows [r0, r1) × columns [c0, c1) and its halves; returns its index.
-  /// `sample(r, c)` is the sample index of a node; `accelerations[r]`, `curvatures[c]` its values.
-  struct grid_view;
-  std::uint32_t add_block(const grid_view& grid, std::size_t r0, std::size_t r1, std::size_t c0, std::size_t c1);
-  /// Adds the tree of blocks of a whole grid.
-  void add_root(grid_view& grid);
+  /// How a start relates to the previous one: none; the same speed, so the grids' samples and their
+  /// speeds are the previous start's (only the nominal-curvature columns' are computed again); or a
+  /// new speed, whose grids were sampled again with the same shape.
+  enum class start_kind : std::uint8_t { fresh, same_speed, new_speed };
+  /// Everything that depends on the speed, the pose, the window or the nominal curvature: the
+  /// caches, the speeds and reaches, the nominal-curvature columns' blocks.
+  void start(const ego_state& ego, const collision_window& window, start_kind kind);
+  /// A grid of samples: `sample(r, c)` is the sample index of a node; `accelerations[r]`,
+  /// `curvatures[c]` its values.
+  struct grid_view {
+    std::vector<std::size_t> row_start;  ///< sample index of each row's first column
+    std::vector<double> accelerations;   ///< [row] [m/s²]
+    std::vector<double> curvatures;      ///< [column] [1/m]
+    bool ascending = false;              ///< both lists ascending (non-strictly)
+    std::size_t sample(std::size_t r, std::size_t c) const { return row_start[r] + c; }
+  };
+  /// The grids of the samples: the two families' stacked when they share their curvatures.
+  static std::vector<grid_view> grids_of(const maneuver_samples& samples);
+  /// True when two lists of grids have the same rows, columns and orders.
+  static bool same_shape(const std::vector<grid_view>& a, const std::vector<grid_view>& b);
+  /// The grid rows [r0, r1) × columns [c0, c1) of grid `grid` that a block covers.
+  struct block_range {
+    std::uint32_t grid, r0, r1, c0, c1;
+  };
+  /// A block's centre, spreads and largest values from the nodes of its range.
+  static void fill_extents(const grid_view& grid, const block_range& range, block& b);
+  /// Its curvature extents alone (what changes with the speed).
+  static void fill_curvature_extents(const grid_view& grid, const block_range& range, block& b);
+  /// Adds the block of rows [r0, r1) × columns [c0, c1) of `grid` (number `grid_index`) and its
+  /// halves; returns its index.
+  std::uint32_t add_block(const grid_view& grid, std::size_t grid_index, std::size_t r0, std::size_t r1,
+                          std::size_t c0, std::size_t c1);
 
   /// What the straight part (t > T_h) of sample m needs: `maneuver_local_placement`'s values at T_h.
   struct straight_part {
@@ -241,6 +266,8 @@ class ego_sweep {
   widening straight_spread_of(const block& b) const;
   mutable std::vector<widening> straight_spread_;       ///< [block]: `straight_spread`, where known
   mutable std::vector<std::uint8_t> straight_spread_known_;
+  std::vector<grid_view> grids_;
+  std::vector<block_range> ranges_;  ///< [block]
   std::vector<block> blocks_;
   std::vector<std::uint32_t> roots_;
   std::vector<std::uint32_t> order_;
@@ -445,14 +472,18 @@ class clearance_field {
   /// True when sample m collides with the obstacle on the straight part: `straight_minimum` ≤ 0,
   /// decided as `collisions_reference` decides it (`signed_distance_reaches` for rectangles and discs).
   bool straight_collides(const straight_motion& part);
-  /// For rectangles and discs: true when the face separation comes within `level`(s) at some time of
-  /// the straight part (`face_separation_reaches`).
-  bool straight_reaches(const straight_motion& part, const widening& level);
+  /// True when `straight_minimum` can be ≤ `level` [m] (exact up to rounding at the level itself):
+  /// `signed_distance_reaches` at `level` + margin for rectangles and discs.
+  bool straight_within(const straight_motion& part, double level);
   /// `straight_minimum` from its first stage, bit for bit.
   translation_minimum straight_minimum(const straight_motion& part, const straight_lower_bound& separation);
-  /// A lower bound of `straight_minimum` [m]: the closest approach of the reference points, less the
-  /// bounding radii and the margin (a few operations).
-  double straight_bound(const straight_motion& part) const;
+  /// For rectangles and discs: the centre's face separations over the straight part
+  /// (`face_separations`), for the block tests.
+  face_separations straight_separations(const straight_motion& part);
+  /// True when the reference points stay farther apart than `gap` plus the bounding radii and the
+  /// margin over the whole straight part [m] (their closest approach, rounded so as to be sure): then
+  /// `straight_minimum` ≥ `gap`.
+  bool straight_apart(const straight_motion& part, double gap) const;
   /// Time [s] of the first overlap of sample m on the straight part, from the part's start
   /// (`first_contact` at level margin), or +∞.
   double straight_first_contact(const straight_motion& part) const;

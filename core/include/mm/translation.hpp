@@ -1,5 +1,7 @@
 #pragma once
 
+#include <array>
+#include <cstddef>
 #include <limits>
 
 #include "mm/footprint.hpp"
@@ -56,6 +58,30 @@ translation_minimum smallest_face_separation(const placed_rectangle& a, const pl
 /// rectangle along its two axes, less the radius.
 translation_minimum smallest_face_separation(const placed_rectangle& a, vec2 centre, double radius,
                                              const translation& motion, const widening& less = {});
+/// The face separations of two footprints over a translation, prepared once for several tests:
+/// along each face normal n, |p_n + q_n s| − h_n, with p_n the centres' offset, q_n its rate and h_n
+/// the sum of the half extents (two rectangles: their four face normals; a rectangle and a disc:
+/// the rectangle's two axes, the extents widened by the radius).
+class face_separations {
+ public:
+  face_separations(const placed_rectangle& a, const placed_rectangle& b, const translation& motion);
+  face_separations(const placed_rectangle& a, vec2 centre, double radius, const translation& motion);
+  /// `face_separation_reaches` of the same arguments.
+  bool reach(const widening& level) const;
+  /// `smallest_face_separation` of the same arguments.
+  translation_minimum lowest(const widening& less = {}) const;
+
+ private:
+  struct slab {
+    double offset;       ///< p [m]
+    double rate;         ///< q [m/s]
+    double half_extent;  ///< h [m]
+  };
+  std::array<slab, 4> slabs_{};
+  std::size_t count_;
+  double duration_;
+};
+
 /// True when the face separation of `a` moved by `motion` and `b` is at most `level`(s) at some time
 /// s ∈ [0, duration]: the slabs |n·r(s)| ≤ h_n + level(s) of the four face normals meet within
 /// [0, duration] (a ray–box test, one division per slab side). What a threshold needs, without the
