@@ -137,10 +137,7 @@ void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
     }
   }
   grids_ = std::move(grids);
-  for (std::size_t b = 0; b < grid_blocks_; ++b) {
-    const block_range& r = ranges_[b];
-    fill_curvature_extents(grids_[r.grid], r, blocks_[b]);
-  }
+  std::fill(stale_extents_.begin(), stale_extents_.begin() + static_cast<std::ptrdiff_t>(grid_blocks_), 1);
   start(ego, window, start_kind::new_speed);
 }
 
@@ -213,6 +210,7 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
     nominal.ascending = std::is_sorted(nominal.accelerations.begin(), nominal.accelerations.end());
     roots_.push_back(add_block(nominal, grids_.size(), 0, nominal.row_start.size(), 0, 1));
   }
+  stale_extents_.resize(blocks_.size(), 0);
   straight_spread_.resize(blocks_.size());
   straight_spread_known_.assign(blocks_.size(), 0);
 }
@@ -736,7 +734,7 @@ void clearance_field::raster_state::postpone(std::size_t k) {
 }
 
 void clearance_field::raster_block(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state) {
-  const ego_sweep::block& b = sweep_.blocks()[index];
+  const ego_sweep::block& b = sweep_.block_of(index);
   if (state.hit.all_in(b.begin, b.end)) return;
   const double margin = sweep_.window().margin;
   const double step = sweep_.window().time_step;
@@ -830,7 +828,7 @@ void clearance_field::raster_straight_part(std::size_t i, raster_state& state) {
 }
 
 void clearance_field::straight_part_block(std::uint32_t index, std::size_t i, raster_state& state) {
-  const ego_sweep::block& b = sweep_.blocks()[index];
+  const ego_sweep::block& b = sweep_.block_of(index);
   if (state.hit.all_in(b.begin, b.end)) return;
   ++work_.bound_checks;
   const straight_motion part = straight_motion_of(i, b.centre);

@@ -87,11 +87,14 @@ displacement_set available_displacements(double initial_speed, const ego_limits&
   const auto distance = [&](double a) {
     return travelled_distance(initial_speed, a, horizon, limits.speed_cap);
   };
+  std::vector<double> row_arc_lengths;  // s at T_h of each acceleration node
+  row_arc_lengths.reserve(set.acceleration_count);
   for (std::size_t ia = 0; ia < set.acceleration_count; ++ia) {
     const node_cell a = node_and_cell(set.min_acceleration, set.max_acceleration, ia, set.acceleration_count);
     const double s = distance(a.node);
-    const double s0 = distance(a.lo);
-    const double s1 = distance(a.hi);
+    row_arc_lengths.push_back(s);
+    const double s0 = node_weights ? distance(a.lo) : 0.0;
+    const double s1 = node_weights ? distance(a.hi) : 0.0;
     for (std::size_t ik = 0; ik < set.curvature_count; ++ik) {
       const node_cell k = node_and_cell(-set.max_curvature, set.max_curvature, ik, set.curvature_count);
       const double weight = !node_weights            ? 0.0
@@ -103,45 +106,61 @@ displacement_set available_displacements(double initial_speed, const ego_limits&
   }
   const std::size_t kappa_cells = set.curvature_count > 1 ? set.curvature_count - 1 : 1;
   // G(s, κ) at the quadrature points of every κ cell, for the arc length of each acceleration
-  // node: rows of cells share them (`cell_area` on the same values, computed once).
-  const auto primitives = [&](std::size_t ia) {
-    const double s = distance(set.samples[ia * set.curvature_count].u.acceleration);
-    std::vector<double> g;
-    g.reserve(kappa_cells * quadrature_nodes.size());
+  // node: rows of cells share them (`cell_area` on the same values, computed once per row).
+  const std::size_t nodes = quadrature_nodes.size();
+  std::vector<double> kappas;  // [cell · nodes + q]
+  std::vector<double> halves;  // [cell]
+  if (set.max_curvature > 0.0) {
+    kappas.reserve(kappa_cells * nodes);
     for (std::size_t ik = 0; ik < kappa_cells; ++ik) {
-      if (set.max_curvature <= 0.0) {
-        g.push_back(area_element_primitive(s, 0.0));
-        continue;
-      }
       const double kappa0 = set.curvature_count == 1 ? -set.max_curvature : set.samples[ik].u.curvature;
       const double kappa1 = set.curvature_count == 1 ? set.max_curvature : set.samples[ik + 1].u.curvature;
       const double mid = 0.5 * (kappa0 + kappa1);
       const double half = 0.5 * (kappa1 - kappa0);
-      for (const double node : quadrature_nodes) g.push_back(area_element_primitive(s, mid + half * node));
+      halves.push_back(half);
+      for (const double node : quadrature_nodes) kappas.push_back(mid + half * node);
     }
-    return g;
+  }
+  // G is even in κ and the curvature nodes are symmetric about 0, so the cells mirrored about the
+  // middle have the same weights: only the first half of the cells (and a middle one) is integrated.
+  const std::size_t integrated = set.max_curvature > 0.0 ? (kappa_cells + 1) / 2 : kappa_cells;
+  const auto primitives = [&](std::size_t ia, std::vector<double>& g) {
+    const double s = row_arc_lengths[ia];
+    g.clear();
+    if (set.max_curvature <= 0.0) {
+      g.assign(kappa_cells, area_element_primitive(s, 0.0));
+      return;
+    }
+    for (std::size_t j = 0; j < integrated * nodes; ++j) g.push_back(area_element_primitive(s, kappas[j]));
   };
-  std::vector<double> lower = set.acceleration_count > 1 ? primitives(0) : std::vector<double>{};
+  std::vector<double> lower;
+  std::vector<double> upper;
+  lower.reserve(kappa_cells * nodes);
+  upper.reserve(kappa_cells * nodes);
+  if (set.acceleration_count > 1) primitives(0, lower);
+  set.cell_weights.reserve((set.acceleration_count > 0 ? set.acceleration_count - 1 : 0) * kappa_cells);
   for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
-    const std::vector<double> upper = primitives(ia + 1);
+    primitives(ia + 1, upper);
+    const std::size_t row = set.cell_weights.size();
     for (std::size_t ik = 0; ik < kappa_cells; ++ik) {
+      if (ik >= integrated) {
+        set.cell_weights.push_back(set.cell_weights[row + (kappa_cells - 1 - ik)]);
+        continue;
+      }
       double weight = 0.0;
       if (set.max_curvature <= 0.0) {
         weight = upper[ik] - lower[ik];
       } else {
-        const double kappa0 = set.curvature_count == 1 ? -set.max_curvature : set.samples[ik].u.curvature;
-        const double kappa1 = set.curvature_count == 1 ? set.max_curvature : set.samples[ik + 1].u.curvature;
-        const double half = 0.5 * (kappa1 - kappa0);
         double sum = 0.0;
-        for (std::size_t q = 0; q < quadrature_nodes.size(); ++q) {
-          const std::size_t at = ik * quadrature_nodes.size() + q;
+        for (std::size_t q = 0; q < nodes; ++q) {
+          const std::size_t at = ik * nodes + q;
           sum += quadrature_weights[q] * (upper[at] - lower[at]);
         }
-        weight = sum * half;
+        weight = sum * halves[ik];
       }
       set.cell_weights.push_back(std::max(weight, 0.0));
     }
-    lower = upper;
+    std::swap(lower, upper);
   }
   if (!node_weights) {
     for (const double w : set.cell_weights) set.area += w;

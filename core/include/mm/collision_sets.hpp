@@ -141,7 +141,20 @@ class ego_sweep {
     double largest_deceleration = 0.0; ///< largest |a| of the block [m/s²]
     double largest_curvature = 0.0;    ///< largest |κ| of the block [1/m]
   };
-  const std::vector<block>& blocks() const { return blocks_; }
+  const std::vector<block>& blocks() const {
+    for (std::uint32_t b = 0; b < blocks_.size(); ++b) block_of(b);
+    return blocks_;
+  }
+  /// Block `index`: `blocks()[index]`, its curvature extents taken from the grids on first use after
+  /// a restart at a new speed (most blocks of a step are never looked at).
+  const block& block_of(std::uint32_t index) const {
+    if (stale_extents_[index] != 0) {
+      const block_range& r = ranges_[index];
+      fill_curvature_extents(grids_[r.grid], r, blocks_[index]);
+      stale_extents_[index] = 0;
+    }
+    return blocks_[index];
+  }
   /// The blocks that hold every sample once: one per grid.
   const std::vector<std::uint32_t>& roots() const { return roots_; }
   /// The samples in tree order: every block is a contiguous range of it.
@@ -157,7 +170,7 @@ class ego_sweep {
   /// start and block.
   const widening& straight_spread(std::uint32_t b) const {
     if (!straight_spread_known_[b]) {
-      straight_spread_[b] = straight_spread_of(blocks_[b]);
+      straight_spread_[b] = straight_spread_of(block_of(b));
       straight_spread_known_[b] = 1;
     }
     return straight_spread_[b];
@@ -268,7 +281,8 @@ class ego_sweep {
   mutable std::vector<std::uint8_t> straight_spread_known_;
   std::vector<grid_view> grids_;
   std::vector<block_range> ranges_;  ///< [block]
-  std::vector<block> blocks_;
+  mutable std::vector<block> blocks_;          ///< curvature extents valid where not `stale_extents_`
+  mutable std::vector<std::uint8_t> stale_extents_;  ///< [block]
   std::vector<std::uint32_t> roots_;
   std::vector<std::uint32_t> order_;
   std::size_t grid_blocks_ = 0;  ///< the first blocks, roots and order entries are the grids'
