@@ -191,6 +191,8 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
     if (t > horizon) travel += largest_speed_ * (t - horizon);
     reach_radius_.push_back(travel * (1.0 + 1e-12) + 1e-9);
   }
+  straight_reach_ = {travelled_distance(ego.speed, ego.limits.max_acceleration, horizon, cap) * (1.0 + 1e-12) + 1e-9,
+                     largest_speed_ * (1.0 + 1e-12)};
   // The nominal-curvature columns' blocks, after the grids' (which depend only on what `restart`
   // requires to be unchanged, and the grids' values).
   blocks_.resize(grid_blocks_);
@@ -624,9 +626,6 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     }
     return false;
   };
-  // How fast the reach test's gap can close between sample times: the obstacle's reference point
-  // and the ego's reach radius.
-  const double reach_rate = motion.speed + sweep.largest_speed();
   for (std::size_t i = 0; i < slots; ++i) {
     if (!slot_wanted(i)) continue;
     const std::size_t shared_until = shared_end(i);
@@ -646,17 +645,20 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       }
       raster(k, o, own);
     }
-    // The straight part: its sample times bound how close the obstacle can come to any sample
-    // (within a step of each, and for inertness), then every block is tested once in closed form.
-    bool reachable = false;
-    for (std::size_t k = part_first_[i]; k < times.size(); ++k) {
-      const obstacle_at o = obstacle_pose(i, k);
-      out_of_reach(k, o);
-      const double gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
-      if (gap <= reach_rate * step * (1.0 + 1e-9)) reachable = true;
+    // The straight part: how close the obstacle comes to the disc that holds every sample's
+    // reference point (its radius grows linearly there, the obstacle moves on a line), in closed
+    // form, bounds every sample (for inertness, and whether to look at the part at all); then every
+    // block is tested once in closed form.
+    {
+      const widening reach = sweep.straight_reach();
+      const double from = part_start_[i];
+      const double radius = reach.base + reach.rate * (from - window.horizon);
+      const double closest = closest_approach_to_growing_disc(part_obstacle_[i].position - start, part_velocity_[i],
+                                                              reach.rate, window.duration - from);
+      const double gap = closest - 1e-12 * std::abs(closest) - 1e-9 - radius - reach_ - margin;
+      if (gap < walk_cap_) near = true;
+      if (gap <= 0.0) raster_straight_part(i, own);
     }
-    // Every time of the straight part lies within a step of one of its sample times.
-    if (reachable) raster_straight_part(i, own);
     if (record) first_overlap_[i].assign(samples, no_collision);
     own.hit.for_each([&](std::size_t p) {
       sampled_[i].set(order[p]);

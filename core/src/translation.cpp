@@ -95,6 +95,18 @@ double earliest_at_or_below(DistanceAt&& distance_at, const translation_minimum&
 
 }  // namespace
 
+double closest_approach_to_growing_disc(vec2 offset, vec2 velocity, double growth, double duration) {
+  const double a = squared_norm(velocity);
+  const double b = dot(offset, velocity);
+  const auto at = [&](double s) { return norm(offset + s * velocity) - growth * s; };
+  // The distance changes at most at |velocity|: no faster than the disc grows, it only falls.
+  if (a <= growth * growth) return at(duration);
+  // (b + a s)² = growth² |offset + velocity s|² = growth² ((b + a s)² + |offset × velocity|²) / a.
+  const double across = cross(offset, velocity);
+  const double u = growth * std::sqrt(across * across / (a - growth * growth));
+  return at(std::clamp((u - b) / a, 0.0, duration));
+}
+
 placed_rectangle moved(const placed_rectangle& a, vec2 displacement) {
   return {a.centre + displacement, a.axis, a.half_length, a.half_width};
 }

@@ -183,6 +183,30 @@ TEST(translation_property, the_first_contact_is_the_first_time_the_signed_distan
   EXPECT_GT(contacts, count / 10);
 }
 
+TEST(translation_property, the_closest_approach_to_a_growing_disc_is_the_densely_sampled_minimum) {
+  std::mt19937_64 rng(testing::property_seed() + 59);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::uniform_real_distribution<double> angle(-pi, pi);
+  const std::size_t count = testing::property_count(3000);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const vec2 offset = 30.0 * unit(rng) * unit_vector(angle(rng));
+    const vec2 velocity = (unit(rng) < 0.05 ? 0.0 : 25.0 * unit(rng)) * unit_vector(angle(rng));
+    const double growth = unit(rng) < 0.05 ? 0.0 : 30.0 * unit(rng);
+    const double duration = 3.0 * unit(rng);
+    const auto at = [&](double s) { return norm(offset + s * velocity) - growth * s; };
+    const double closed = closest_approach_to_growing_disc(offset, velocity, growth, duration);
+    const double dense = densely_sampled_minimum(at, duration, dense_steps);
+    // The function changes no faster than |velocity| + growth.
+    const double slack = (norm(velocity) + growth) * duration / dense_steps / 2.0 + 1e-9;
+    const std::string input = "trial " + std::to_string(trial) + ": offset (" + std::to_string(offset.x) + ", " +
+                              std::to_string(offset.y) + ") velocity (" + std::to_string(velocity.x) + ", " +
+                              std::to_string(velocity.y) + ") growth " + std::to_string(growth) + " duration " +
+                              std::to_string(duration);
+    ASSERT_LE(closed, dense + 1e-9) << input;
+    ASSERT_GE(closed, dense - slack) << input;
+  }
+}
+
 TEST(translation, simple_translations_have_the_distances_and_contact_times_worked_out_by_hand) {
   const placed_rectangle a{{5.0, 1.0}, {1.0, 0.0}, 2.25, 0.9};
   const placed_rectangle b{{0.0, 0.0}, unit_vector(0.3), 2.25, 0.9};

@@ -125,6 +125,9 @@ class ego_sweep {
   /// radius the farthest arc length travelled by then [m].
   vec2 reach_centre(std::size_t) const { return ego_.pose.position; }
   double reach_radius(std::size_t k) const { return reach_radius_[k]; }
+  /// The same radius at any time t ≥ T_h [m]: `base` at T_h, growing at `rate` [m/s] (rounded up,
+  /// so at least `reach_radius` at every sample time there).
+  widening straight_reach() const { return straight_reach_; }
 
   /// A rectangle of grid nodes: rows (accelerations) × columns (curvatures) of the two families'
   /// grids stacked (both have the same curvatures), or of their nominal-curvature columns. Its
@@ -272,6 +275,7 @@ class ego_sweep {
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
   std::vector<double> reach_radius_;
+  widening straight_reach_;
   double ego_radius_ = 0.0;  ///< bounding radius of the ego footprint [m]
   /// Upper bounds of the arc length at time t ≤ T_h and of the speed at T_h of a sample of acceleration a.
   double arc_length_bound(double a, double t) const;

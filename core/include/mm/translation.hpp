@@ -111,6 +111,12 @@ translation_minimum smallest_signed_distance(const placed_rectangle& a, vec2 cen
 translation_minimum smallest_signed_distance(const placed_footprint& a, const placed_footprint& b,
                                              const translation& motion);
 
+/// min over s ∈ [0, duration] of |offset + velocity·s| − growth·s [m]: how close a point moving at
+/// `velocity` [m/s] from `offset` [m] comes to the edge of a disc about the origin whose radius
+/// grows at `growth` ≥ 0 [m/s]. Convex in s, so minimised in closed form: where the rate at which
+/// the distance changes equals the growth, (offset + velocity·s)·velocity / |…| = growth, clamped.
+double closest_approach_to_growing_disc(vec2 offset, vec2 velocity, double growth, double duration);
+
 /// `a` moved by `displacement` [m].
 placed_rectangle moved(const placed_rectangle& a, vec2 displacement);
 placed_footprint moved(const placed_footprint& a, vec2 displacement);
