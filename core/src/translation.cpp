@@ -152,25 +152,16 @@ face_separations::face_separations(const placed_rectangle& a, vec2 centre, doubl
 }
 
 bool face_separations::reach(const widening& level) const {
-  // |p + q s| − h ≤ L₀ + L₁ s on both sides: (q − L₁) s ≤ h + L₀ − p and (−q − L₁) s ≤ h + L₀ + p.
-  // Each bound β/α of s is kept as a fraction with a positive denominator and compared by
-  // cross-multiplying: no division.
-  double lo_num = 0.0;
-  double lo_den = 1.0;
-  double hi_num = duration_;
-  double hi_den = 1.0;
+  // |p + q s| − h ≤ L₀ + L₁ s on both sides: (q − L₁) s ≤ h + L₀ − p and (−q − L₁) s ≤ h + L₀ + p,
+  // each a half-line of times; they meet within [0, duration] or not.
+  double lo = 0.0;
+  double hi = duration_;
   bool empty = false;
   const auto bound = [&](double alpha, double beta) {  // α s ≤ β
     if (alpha > 0.0) {
-      if (beta * hi_den < hi_num * alpha) {
-        hi_num = beta;
-        hi_den = alpha;
-      }
+      hi = std::min(hi, beta / alpha);
     } else if (alpha < 0.0) {
-      if (-beta * lo_den > lo_num * -alpha) {
-        lo_num = -beta;
-        lo_den = -alpha;
-      }
+      lo = std::max(lo, beta / alpha);
     } else if (beta < 0.0) {
       empty = true;
     }
@@ -181,7 +172,31 @@ bool face_separations::reach(const widening& level) const {
     bound(f.rate - level.rate, room - f.offset);
     bound(-f.rate - level.rate, room + f.offset);
   }
-  return !empty && lo_num * hi_den <= hi_num * lo_den;
+  return !empty && lo <= hi;
+}
+
+bool face_separations::reach(double level) const {
+  if (!inverted_) {
+    for (std::size_t n = 0; n < count_; ++n) inverse_rates_[n] = slabs_[n].rate != 0.0 ? 1.0 / slabs_[n].rate : 0.0;
+    inverted_ = true;
+  }
+  // |p + q s| ≤ h + level between the times (±(h + level) − p)/q.
+  double lo = 0.0;
+  double hi = duration_;
+  for (std::size_t n = 0; n < count_; ++n) {
+    const slab& f = slabs_[n];
+    const double room = f.half_extent + level;
+    if (!(room >= 0.0)) return false;
+    if (f.rate == 0.0) {
+      if (!(std::abs(f.offset) <= room)) return false;
+      continue;
+    }
+    const double first = (-room - f.offset) * inverse_rates_[n];
+    const double second = (room - f.offset) * inverse_rates_[n];
+    lo = std::max(lo, std::min(first, second));
+    hi = std::min(hi, std::max(first, second));
+  }
+  return lo <= hi;
 }
 
 translation_minimum face_separations::lowest(const widening& less) const {
@@ -227,8 +242,8 @@ translation_minimum smallest_signed_distance(const placed_rectangle& a, vec2 cen
 bool signed_distance_reaches(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
                              double level) {
   const face_separations separations(a, b, motion);
-  if (!separations.reach({level, 0.0})) return false;
-  if (level <= 0.0 || separations.reach({0.0, 0.0})) return true;  // overlapping: it is the distance
+  if (!separations.reach(level)) return false;
+  if (level <= 0.0 || separations.reach(0.0)) return true;  // overlapping: it is the distance
   return apart_minimum(a, b, motion).distance <= level;
 }
 
@@ -236,8 +251,8 @@ bool signed_distance_reaches(const placed_rectangle& a, vec2 centre, double radi
                              double level) {
   // The disc's centre inside the rectangle where its separation is ≤ −radius.
   const face_separations separations(a, centre, radius, motion);
-  if (!separations.reach({level, 0.0})) return false;
-  if (level + radius <= 0.0 || separations.reach({-radius, 0.0})) return true;
+  if (!separations.reach(level)) return false;
+  if (level + radius <= 0.0 || separations.reach(-radius)) return true;
   return apart_minimum(a, centre, radius, motion).distance <= level;
 }
 

@@ -68,6 +68,9 @@ class face_separations {
   face_separations(const placed_rectangle& a, vec2 centre, double radius, const translation& motion);
   /// `face_separation_reaches` of the same arguments.
   bool reach(const widening& level) const;
+  /// The same for a constant level [m]: each slab's interval of times from the reciprocal of its
+  /// rate, kept for the next constant level.
+  bool reach(double level) const;
   /// `smallest_face_separation` of the same arguments.
   translation_minimum lowest(const widening& less = {}) const;
 
@@ -80,6 +83,8 @@ class face_separations {
   std::array<slab, 4> slabs_{};
   std::size_t count_;
   double duration_;
+  mutable std::array<double, 4> inverse_rates_{};  ///< 1/q, where `inverted_`
+  mutable bool inverted_ = false;
 };
 
 /// True when the face separation of `a` moved by `motion` and `b` is at most `level`(s) at some time
