@@ -154,7 +154,16 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
   const double horizon = window.horizon;
   const double cap = ego.limits.speed_cap;
   if (!straight_) straight_ = std::make_unique_for_overwrite<straight_part[]>(sample_count_);
-  straight_known_.assign(sample_count_, 0);
+  // At the same speed the grids' straight parts in the ego's frame are kept; only their placement in
+  // the world is new.
+  if (kind == start_kind::same_speed && straight_known_.size() == sample_count_) {
+    const std::size_t grids = samples_.brake.samples.size() + samples_.accelerate.samples.size();
+    for (std::size_t m = 0; m < sample_count_; ++m) {
+      straight_known_[m] = m < grids && straight_known_[m] != unknown ? local_only : unknown;
+    }
+  } else {
+    straight_known_.assign(sample_count_, unknown);
+  }
   // The grids' samples come first and do not change on a restart at the same speed; the
   // nominal-curvature columns follow.
   const std::size_t kept = kind == start_kind::same_speed ? samples_.brake.samples.size() + samples_.accelerate.samples.size() : 0;
@@ -370,16 +379,24 @@ ego_sweep::placement ego_sweep::local_placement_at(std::size_t m, double t) cons
 
 const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
   straight_part& part = straight_[m];
-  if (!straight_known_[m]) {
-    // maneuver_local_placement's values for t > T_h, in its order of operations.
+  if (straight_known_[m] == unknown) {
+    // maneuver_local_placement's values for t > T_h, in its order of operations: in the ego's
+    // frame, they depend only on the speed and the maneuver.
     const double horizon = window_.horizon;
     const double cap = ego_.limits.speed_cap;
     const maneuver& u = samples_.maneuvers[m];
     const placement end = maneuver_local_placement(ego_.speed, u, horizon, horizon, cap);
-    const placement world = in_world(end);
-    const double speed = speed_after(ego_.speed, u.acceleration, horizon, cap);
-    part = {end.position, end.direction, speed, world.direction, world.position, speed * world.direction};
-    straight_known_[m] = 1;
+    part.local = end.position;
+    part.along = end.direction;
+    part.speed = speed_after(ego_.speed, u.acceleration, horizon, cap);
+    straight_known_[m] = local_only;
+  }
+  if (straight_known_[m] == local_only) {
+    const placement world = in_world({part.local, part.along});
+    part.direction = world.direction;
+    part.start = world.position;
+    part.velocity = part.speed * world.direction;
+    straight_known_[m] = known;
   }
   return part;
 }

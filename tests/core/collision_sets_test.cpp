@@ -364,10 +364,12 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
     SCOPED_TRACE(testing::describe(second));
     maneuver_samples samples = prepare(first, 0.05).samples;
     ego_sweep restarted(first.ego, samples, {1.0, 3.0, 0.05, 0.0});
-    // Every placement cached, the nominal-curvature columns' included (which the restart rewrites).
+    // Every placement and straight part cached, the nominal-curvature columns' included (which the
+    // restart rewrites).
     for (std::size_t k = 0; k < restarted.times().size(); ++k) {
       for (std::size_t m = 0; m < samples.size(); ++m) restarted.at(k, m);
     }
+    for (std::size_t m = 0; m < samples.size(); ++m) restarted.straight_line(m);
     if (new_speed) {
       samples = prepare(second, 0.05).samples;
     } else {
@@ -407,6 +409,10 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
         const placement b = fresh.at(k, m);
         ASSERT_TRUE(a.position == b.position && a.direction == b.direction) << "time " << k << " sample " << m;
         ASSERT_EQ(restarted.sample_speed(m), fresh.sample_speed(m)) << "sample " << m;
+        const ego_sweep::line x = restarted.straight_line(m);
+        const ego_sweep::line y = fresh.straight_line(m);
+        ASSERT_TRUE(x.start == y.start && x.velocity == y.velocity && restarted.straight_direction(m) == fresh.straight_direction(m))
+            << "straight part of sample " << m;
         ASSERT_EQ(restarted.sample_point_speed(m), fresh.sample_point_speed(m)) << "sample " << m;
       }
     }

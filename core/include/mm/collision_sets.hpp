@@ -259,7 +259,10 @@ class ego_sweep {
   vec2 start_rotation_;  ///< (cos, sin) of the start heading
   /// `straight_part` of sample m, computed on first use.
   const straight_part& straight(std::size_t m) const;
-  mutable std::unique_ptr<straight_part[]> straight_;  ///< [m], valid where `straight_known_`
+  mutable std::unique_ptr<straight_part[]> straight_;  ///< [m], valid as far as `straight_known_` says
+  /// What `straight_` holds of a sample: nothing, its ego-frame values (kept across restarts at the
+  /// same speed), or everything.
+  enum straight_state : std::uint8_t { unknown, local_only, known };
   mutable std::vector<std::uint8_t> straight_known_;
   std::vector<double> sample_speed_;
   std::vector<double> sample_point_speed_;
