@@ -267,19 +267,28 @@ namespace {
 translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion) {
   // Apart all along: every pair of corners along the motion, then the ends where their face
   // separation (a lower bound of their distance) is below the closest pair.
+  // In the frame of the motion (x along it), a pair's offset (x, y) moves to (x + v s, y).
   const vec2 w = motion.velocity;
   const double duration = motion.duration;
-  const double speed_squared = squared_norm(w);
-  const double inverse = speed_squared > 0.0 ? 1.0 / speed_squared : 0.0;
+  const double speed = norm(w);
+  const vec2 along = speed > 0.0 ? (1.0 / speed) * w : vec2{1.0, 0.0};
   const std::array<vec2, 4> mine = corners(a);
   const std::array<vec2, 4> theirs = corners(b);
+  std::array<vec2, 4> their_frame{};
+  for (std::size_t j = 0; j < 4; ++j) their_frame[j] = {dot(theirs[j], along), cross(along, theirs[j])};
+  const double inverse = speed > 0.0 ? 1.0 / speed : 0.0;
   double closest = std::numeric_limits<double>::infinity();
   double at = 0.0;
   for (const vec2& p : mine) {
-    for (const vec2& q : theirs) {
-      const vec2 d = p - q;
-      const double s = std::clamp(-dot(d, w) * inverse, 0.0, duration);
-      const double squared = squared_norm(d + s * w);
+    const vec2 pf{dot(p, along), cross(along, p)};
+    for (const vec2& q : their_frame) {
+      const double y = pf.y - q.y;
+      const double y2 = y * y;
+      if (y2 >= closest) continue;
+      const double x = pf.x - q.x;
+      const double s = std::clamp(-x * inverse, 0.0, duration);
+      const double dx = x + speed * s;
+      const double squared = dx * dx + y2;
       if (squared < closest) {
         closest = squared;
         at = s;
