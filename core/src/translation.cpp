@@ -18,7 +18,10 @@ struct line {
 /// piecewise linear, so from s = 0 the walk follows the line that rises slowest among those on top
 /// (its right derivative) until a steeper one overtakes it, and stops where the envelope stops
 /// falling. Each step moves to a strictly steeper line: at most `count` steps.
-translation_minimum lowest_on_envelope(const line* lines, std::size_t count, double duration) {
+template <std::size_t count_limit = 0>
+translation_minimum lowest_on_envelope(const line* lines, std::size_t runtime_count, double duration) {
+  // A fixed count (the rectangle forms' eight or four lines) lets the loops unroll.
+  const std::size_t count = count_limit > 0 ? count_limit : runtime_count;
   std::size_t active = 0;
   for (std::size_t j = 1; j < count; ++j) {
     if (lines[j].c > lines[active].c || (lines[j].c == lines[active].c && lines[j].b > lines[active].b)) active = j;
@@ -206,7 +209,7 @@ translation_minimum face_separations::lowest(const widening& less) const {
     lines[2 * n] = {f.offset - f.half_extent - less.base, f.rate - less.rate};
     lines[2 * n + 1] = {-f.offset - f.half_extent - less.base, -f.rate - less.rate};
   }
-  return lowest_on_envelope(lines.data(), 2 * count_, duration_);
+  return count_ == 4 ? lowest_on_envelope<8>(lines.data(), 8, duration_) : lowest_on_envelope<4>(lines.data(), 4, duration_);
 }
 
 translation_minimum smallest_face_separation(const placed_rectangle& a, const placed_rectangle& b,
