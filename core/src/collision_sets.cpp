@@ -932,49 +932,21 @@ clearance_field::straight_motion clearance_field::straight_motion_of(std::size_t
 }
 
 translation_minimum clearance_field::straight_minimum(const straight_motion& part) {
-  return straight_minimum(part, straight_separation(part));
-}
-
-clearance_field::straight_lower_bound clearance_field::straight_separation(const straight_motion& part) {
   ++work_.translation_minima;
-  const double margin = sweep_.window().margin;
   const placement& e = part.ego;
   const obstacle_at& o = part.obstacle;
   translation_minimum low;
-  bool overlapping = true;
   if (shapes_ == shape_pair::rectangles) {
-    low = smallest_face_separation(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y},
-                                   placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y},
-                                   part.motion);
-    overlapping = low.distance <= 0.0;
+    const placed_rectangle ego{e.position, e.direction, ego_half_.x, ego_half_.y};
+    const placed_rectangle obstacle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
+    low = smallest_signed_distance(ego, obstacle, part.motion, face_separations(ego, obstacle, part.motion));
   } else if (shapes_ == shape_pair::rectangle_disc) {
-    low = smallest_face_separation(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y}, o.position,
+    low = smallest_signed_distance(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y}, o.position,
                                    obstacle_radius_, part.motion);
-    overlapping = low.distance + obstacle_radius_ <= 0.0;
   } else {
     low = straight_part_minimum(sweep_.ego().shape, e, obstacle_.shape, o, part.motion);
   }
-  const translation_minimum stage = low;
-  low.distance -= margin;
-  return {low, stage, overlapping};
-}
-
-translation_minimum clearance_field::straight_minimum(const straight_motion& part, const straight_lower_bound& separation) {
-  if (separation.exact) return separation.low;
-  const double margin = sweep_.window().margin;
-  const placement& e = part.ego;
-  const obstacle_at& o = part.obstacle;
-  const translation_minimum& stage = separation.stage;
-  translation_minimum low;
-  if (shapes_ == shape_pair::rectangles) {
-    low = smallest_signed_distance(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y},
-                                   placed_rectangle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y},
-                                   part.motion, stage);
-  } else {
-    low = smallest_signed_distance(placed_rectangle{e.position, e.direction, ego_half_.x, ego_half_.y}, o.position,
-                                   obstacle_radius_, part.motion, stage);
-  }
-  low.distance -= margin;
+  low.distance -= sweep_.window().margin;
   return low;
 }
 

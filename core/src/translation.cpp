@@ -123,7 +123,8 @@ placed_footprint moved(const placed_footprint& a, vec2 displacement) {
 
 namespace {
 
-translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion);
+translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
+                                  const face_separations& separations);
 translation_minimum apart_minimum(const placed_rectangle& a, vec2 centre, double radius, const translation& motion);
 
 }  // namespace
@@ -176,6 +177,15 @@ bool face_separations::reach(const widening& level) const {
     bound(-f.rate - level.rate, room + f.offset);
   }
   return !empty && lo <= hi;
+}
+
+double face_separations::at(double s) const {
+  double separation = -std::numeric_limits<double>::infinity();
+  for (std::size_t n = 0; n < count_; ++n) {
+    const slab& f = slabs_[n];
+    separation = std::max(separation, std::abs(f.offset + f.rate * s) - f.half_extent);
+  }
+  return separation;
 }
 
 bool face_separations::reach(double level) const {
@@ -247,7 +257,7 @@ bool signed_distance_reaches(const placed_rectangle& a, const placed_rectangle& 
   const face_separations separations(a, b, motion);
   if (!separations.reach(level)) return false;
   if (level <= 0.0 || separations.reach(0.0)) return true;  // overlapping: it is the distance
-  return apart_minimum(a, b, motion).distance <= level;
+  return apart_minimum(a, b, motion, separations).distance <= level;
 }
 
 bool signed_distance_reaches(const placed_rectangle& a, vec2 centre, double radius, const translation& motion,
@@ -262,12 +272,20 @@ bool signed_distance_reaches(const placed_rectangle& a, vec2 centre, double radi
 translation_minimum smallest_signed_distance(const placed_rectangle& a, const placed_rectangle& b,
                                              const translation& motion, const translation_minimum& separation) {
   if (separation.distance <= 0.0) return separation;
-  return apart_minimum(a, b, motion);
+  return apart_minimum(a, b, motion, face_separations(a, b, motion));
+}
+
+translation_minimum smallest_signed_distance(const placed_rectangle& a, const placed_rectangle& b,
+                                             const translation& motion, const face_separations& separations) {
+  const translation_minimum separation = separations.lowest();
+  if (separation.distance <= 0.0) return separation;
+  return apart_minimum(a, b, motion, separations);
 }
 
 namespace {
 
-translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion) {
+translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectangle& b, const translation& motion,
+                                  const face_separations& separations) {
   // Apart all along: every pair of corners along the motion, then the ends where their face
   // separation (a lower bound of their distance) is below the closest pair.
   // In the frame of the motion (x along it), a pair's offset (x, y) moves to (x + v s, y).
@@ -299,9 +317,10 @@ translation_minimum apart_minimum(const placed_rectangle& a, const placed_rectan
     }
   }
   translation_minimum best{std::sqrt(closest), at};
-  if (face_separation(a, b) < best.distance) best = lower({corner_distance(a, b), 0.0}, best);
-  const placed_rectangle end = moved(a, duration * w);
-  if (face_separation(end, b) < best.distance) best = lower(best, {corner_distance(end, b), duration});
+  if (separations.at(0.0) < best.distance) best = lower({corner_distance(a, b), 0.0}, best);
+  if (separations.at(duration) < best.distance) {
+    best = lower(best, {corner_distance(moved(a, duration * w), b), duration});
+  }
   return best;
 }
 

@@ -481,23 +481,12 @@ class clearance_field {
   /// The smallest signed distance − margin of sample m over the straight part of forecast time i
   /// [m], and when it is reached (after the part's start) [s]: `smallest_signed_distance`.
   translation_minimum straight_minimum(const straight_motion& part);
-  /// Its first stage for rectangles and discs, `smallest_face_separation` − margin: a lower bound,
-  /// and the minimum itself when `exact` (the footprints overlap there, or general shapes, whose
-  /// minimum is computed whole).
-  struct straight_lower_bound {
-    translation_minimum low;    ///< − margin
-    translation_minimum stage;  ///< as `smallest_face_separation` returned it
-    bool exact;
-  };
-  straight_lower_bound straight_separation(const straight_motion& part);
   /// True when sample m collides with the obstacle on the straight part: `straight_minimum` ≤ 0,
   /// decided as `collisions_reference` decides it (`signed_distance_reaches` for rectangles and discs).
   bool straight_collides(const straight_motion& part);
   /// True when `straight_minimum` can be ≤ `level` [m] (exact up to rounding at the level itself):
   /// `signed_distance_reaches` at `level` + margin for rectangles and discs.
   bool straight_within(const straight_motion& part, double level);
-  /// `straight_minimum` from its first stage, bit for bit.
-  translation_minimum straight_minimum(const straight_motion& part, const straight_lower_bound& separation);
   /// For rectangles and discs: the centre's face separations over the straight part
   /// (`face_separations`), for the block tests.
   face_separations straight_separations(const straight_motion& part);

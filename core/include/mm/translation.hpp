@@ -73,6 +73,8 @@ class face_separations {
   bool reach(double level) const;
   /// `smallest_face_separation` of the same arguments.
   translation_minimum lowest(const widening& less = {}) const;
+  /// The face separation at time s [m]: a lower bound of the signed distance then.
+  double at(double s) const;
 
  private:
   struct slab {
@@ -102,6 +104,10 @@ bool signed_distance_reaches(const placed_rectangle& a, const placed_rectangle& 
                              double level);
 bool signed_distance_reaches(const placed_rectangle& a, vec2 centre, double radius, const translation& motion,
                              double level);
+
+/// `smallest_signed_distance` of two rectangles from their prepared face separations.
+translation_minimum smallest_signed_distance(const placed_rectangle& a, const placed_rectangle& b,
+                                             const translation& motion, const face_separations& separations);
 
 /// `smallest_signed_distance` from its first stage `separation` (`smallest_face_separation` of the
 /// same arguments), bit for bit.
