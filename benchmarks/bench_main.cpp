@@ -17,6 +17,7 @@
 #include "captured_inputs.hpp"
 #include "mm/reference_planner.hpp"
 #include "mm/scenario_file/loader.hpp"
+#include "mm/sim/memory.hpp"
 #include "mm/sim/simulation.hpp"
 
 namespace {
@@ -172,6 +173,7 @@ void register_all() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  mm::sim::retain_freed_memory();  // as the command line does, so that sim/* measure what it runs
   register_all();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;

@@ -16,6 +16,7 @@
 #include "mm/cli/plot.hpp"
 #include "mm/cli/sweep.hpp"
 #include "mm/scenario_file/builtin.hpp"
+#include "mm/sim/memory.hpp"
 
 namespace {
 
@@ -184,6 +185,7 @@ int snapshot_command(const scenario_options& o, double time, const std::string& 
 }  // namespace
 
 int main(int argc, char** argv) {
+  mm::sim::retain_freed_memory();  // a sweep's runs reuse each other's freed buffers
   CLI::App app{"maneuvermap: collision-avoidance planning with Maneuverability Maps, and its traffic simulator"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "maneuvermap 0.1.0");
