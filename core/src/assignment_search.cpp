@@ -79,6 +79,13 @@ forecast_assignment ascend(const assignment_problem& problem, const room_functio
 
 forecast_assignment coordinate_ascent_assignment_search(const assignment_problem& problem) {
   const std::size_t n = problem.candidates.size();
+  if (assignment_count(problem) == 1) {
+    // One assignment: nothing to search.
+    std::vector<std::size_t> only(n);
+    for (std::size_t j = 0; j < n; ++j) only[j] = problem.candidates[j].front();
+    const double room = problem.room(only);
+    return {std::move(only), room, 1};
+  }
   std::size_t evaluations = 0;
   const bool rough = static_cast<bool>(problem.rough_room);
   // Every assignment the climb meets, with what it was climbed by.

@@ -512,11 +512,9 @@ straight_setup straight_setup_of(const ego_state& ego, const maneuver& u, const 
   return {e, o, {ego_velocity - obstacle.motion.speed * o.direction, window.duration - start}};
 }
 
-/// First index of `times` at or after `t`.
+/// First index of `times` (ascending) at or after `t`.
 std::size_t first_at_or_after(const std::vector<double>& times, double t) {
-  std::size_t k = 0;
-  while (k < times.size() && times[k] < t) ++k;
-  return k;
+  return static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t) - times.begin());
 }
 
 }  // namespace
@@ -1222,25 +1220,16 @@ double clearance_field::floor_of_all(std::size_t m) {
   // point: there the closest approach has a closed form, and the sample times are walked only up to
   // the first at or after T_h (every time before it lies within half a step of a walked one).
   const bool straight = turn == 0.0 && window.duration > window.horizon;
+  const double theta = sample_threshold(m);
   std::size_t walked = times.size();
+  double straight_floor = std::numeric_limits<double>::infinity();
+  // The walk skips every time whose bound is provably at or above `target`: at or above the
+  // running minimum, it cannot lower it; at or above S + θ, with S the straight part's bound, it
+  // cannot lower the floor min(minimum − θ, S) either (the target is rounded up so that any bound
+  // at or above it, less θ, rounds to at least S).
+  double target = std::numeric_limits<double>::infinity();
   if (straight) {
-    walked = 0;
-    while (walked < times.size() && times[walked] < window.horizon) ++walked;
-    walked = std::min(walked + 1, times.size());
-  }
-  double low = walk_cap_;
-  for (std::size_t k = 0; k < walked;) {
-    const double t = times[k];
-    const double radius = std::min(0.5 * turn * t * t, 2.0 * motion.speed * t) * (1.0 + 1e-12) + 1e-9;
-    ++work_.bound_checks;
-    const double bound =
-        norm(sweep_.at(k, m).position - (start + (motion.speed * t) * along)) - radius - reach_ - margin;
-    low = std::min(low, bound);
-    k = first_possible(k, bound - low, rate, step);
-  }
-  // Between sample times the signed distance falls by at most θ.
-  floor = low - sample_threshold(m);
-  if (straight) {
+    walked = std::min(first_at_or_after(times, window.horizon) + 1, times.size());
     // On [T_h, T_c] the reference points' offset is d(t) = d(T_h) + w (t − T_h): its smallest
     // length is at the clamped vertex, in continuous time (so no θ), less a rounding slack.
     ++work_.bound_checks;
@@ -1251,8 +1240,23 @@ double clearance_field::floor_of_all(std::size_t m) {
     const double span = window.duration - window.horizon;
     const double s = speed_squared > 0.0 ? std::clamp(-dot(offset, relative) / speed_squared, 0.0, span) : 0.0;
     const double closest = norm(offset + s * relative) * (1.0 - 1e-12) - 1e-9;
-    floor = std::min(floor, closest - (1e-9 + reach_ + margin));
+    straight_floor = closest - (1e-9 + reach_ + margin);
+    const double lifted = straight_floor + theta;
+    target = lifted + std::abs(lifted) * 1e-12 + 1e-12;
   }
+  double low = walk_cap_;
+  for (std::size_t k = 0; k < walked;) {
+    const double t = times[k];
+    const double radius = std::min(0.5 * turn * t * t, 2.0 * motion.speed * t) * (1.0 + 1e-12) + 1e-9;
+    ++work_.bound_checks;
+    const double bound =
+        norm(sweep_.at(k, m).position - (start + (motion.speed * t) * along)) - radius - reach_ - margin;
+    low = std::min(low, bound);
+    k = first_possible(k, bound - std::min(low, target), rate, step);
+  }
+  // Between sample times the signed distance falls by at most θ.
+  floor = low - theta;
+  if (straight) floor = std::min(floor, straight_floor);
   return floor;
 }
 

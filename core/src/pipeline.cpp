@@ -125,6 +125,12 @@ class evaluator {
     return mi;
   }
 
+  /// False when obstacle j's clearances are the same under every forecast time (fast path: it is
+  /// inert, or does not turn); the reference's sets are kept per forecast time.
+  bool forecast_matters(std::size_t j) const {
+    return reference_ || (!fields_[j].inert() && !fields_[j].forecast_independent());
+  }
+
   /// Fast path: true when some obstacle's clearances depend on its forecast time (it turns, and
   /// is not inert).
   bool depends_on_forecast_time() const {
@@ -179,12 +185,6 @@ class evaluator {
   }
 
  private:
-  /// False when obstacle j's clearances are the same under every forecast time (fast path: it is
-  /// inert, or does not turn); the reference's sets are kept per forecast time.
-  bool forecast_matters(std::size_t j) const {
-    return reference_ || (!fields_[j].inert() && !fields_[j].forecast_independent());
-  }
-
   /// The key of `rooms_` for an assignment: obstacles whose forecast time changes nothing (inert, or
   /// not turning) at forecast index 0, and `rough_key` appended for a rough room (fast path).
   const std::vector<std::size_t>& room_key(std::span<const std::size_t> index, bool rough) {
@@ -606,8 +606,12 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       // An obstacle that collides with no maneuver under any of its forecast times leaves the safe
       // sets (spec §9) the same whatever its forecast time: the fast search holds it at τ = 0. Its
       // clearances still enter every room (the interpolated boundary), so each room stays exact.
+      // So does an obstacle that does not turn, whose clearances are the same under every forecast
+      // time: τ = 0 is where the exhaustive search's tie rule (the smallest index vector) puts it.
       for (std::size_t j = 0; j < n; ++j) {
-        if (!evaluate.collides_under_any(j, problem.candidates[j])) problem.candidates[j] = {0};
+        if (!evaluate.forecast_matters(j) || !evaluate.collides_under_any(j, problem.candidates[j])) {
+          problem.candidates[j] = {0};
+        }
       }
       assignment = coordinate_ascent_assignment_search(problem).forecast_index;
     }

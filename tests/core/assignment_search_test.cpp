@@ -130,6 +130,23 @@ TEST(assignment_search, coordinate_ascent_never_beats_the_exhaustive_optimum_and
   EXPECT_GE(static_cast<double>(close), 0.95 * static_cast<double>(count));
 }
 
+TEST(assignment_search, a_problem_with_one_assignment_is_answered_without_a_climb) {
+  const maneuver_samples samples = sample_maneuvers(moving_ego(), 0.0, 1.0, {11, 9});
+  std::mt19937_64 rng(testing::property_seed() + 3);
+  const auto synthetic = random_problem(rng, samples, 3);
+  assignment_problem problem = synthetic->problem;
+  problem.candidates = {{0}, {0}, {0}};
+  int rough_calls = 0;
+  problem.rough_room = [&](std::span<const std::size_t>) { return ++rough_calls, 0.5; };
+  problem.rough_room_alone = [&](std::size_t, std::size_t) { return ++rough_calls, 0.5; };
+  const forecast_assignment fast = coordinate_ascent_assignment_search(problem);
+  EXPECT_EQ(fast.forecast_index, (std::vector<std::size_t>{0, 0, 0}));
+  EXPECT_DOUBLE_EQ(fast.room, problem.room(fast.forecast_index));
+  EXPECT_EQ(fast.evaluations, 1u);
+  EXPECT_EQ(rough_calls, 0);
+  EXPECT_EQ(exhaustive_assignment_search(problem).forecast_index, fast.forecast_index);
+}
+
 TEST(assignment_search, no_obstacle_leaves_all_the_room) {
   const maneuver_samples samples = sample_maneuvers(moving_ego(), 0.0, 1.0, {5, 3});
   assignment_problem problem;

@@ -141,6 +141,37 @@ TEST(planner_properties, planning_without_the_map_column_decides_the_same_bit_fo
   EXPECT_GT(cheaper, count / 10) << "leaving the map out should save work in many scenes, or this test checks little";
 }
 
+TEST(planner_properties, the_fast_search_holds_every_obstacle_that_does_not_turn_at_the_first_forecast_time) {
+  // Some of two or three obstacles go straight: their clearances are the same under every forecast
+  // time, and both searches give them τ = 0 (the exhaustive search by its tie rule).
+  std::mt19937_64 rng(testing::property_seed() + 11);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::size_t count = testing::property_count(60);
+  std::size_t held = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    plan_input in = testing::random_scene(rng, {2 + trial % 2, false});
+    for (obstacle_track& track : in.obstacles) {
+      if (track.kind == obstacle_kind::static_obstacle || unit(rng) < 0.5) continue;
+      const observation now = track.history.back();
+      track.history = testing::ctrv_history(now.pose, now.speed, 0.0, in.time);
+    }
+    const plan_result fast = plan(in);
+    plan_input exhaustive_input = in;
+    exhaustive_input.config.assignment_search = assignment_search_kind::exhaustive;
+    const plan_result exhaustive = plan(exhaustive_input);
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    ASSERT_TRUE(fast.ok() && exhaustive.ok()) << fast.error << exhaustive.error;
+    for (std::size_t j = 0; j < in.obstacles.size(); ++j) {
+      const obstacle_assessment& o = fast.obstacles[j];
+      if (!o.relevant || o.motion.yaw_rate != 0.0) continue;
+      EXPECT_EQ(o.forecast_index, 0u) << "obstacle " << j;
+      EXPECT_EQ(exhaustive.obstacles[j].forecast_index, 0u) << "obstacle " << j;
+      ++held;
+    }
+  }
+  EXPECT_GT(held, count / 4) << "too few relevant obstacles that do not turn: this test checks little";
+}
+
 TEST(planner_properties, a_planner_that_reuses_its_previous_step_plans_what_plan_plans_bit_for_bit) {
   // Runs of steps of one vehicle: the speed, limits and footprint held for a few steps with new
   // poses, nominal maneuvers, obstacles and settings, then changed.

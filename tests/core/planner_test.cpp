@@ -122,6 +122,36 @@ TEST(planner, the_fast_search_holds_an_obstacle_that_never_collides_at_the_first
               std::max(exhaustive.mi_brake_selected, exhaustive.mi_accelerate_selected), 1e-3);
 }
 
+TEST(planner, the_fast_search_holds_an_obstacle_that_does_not_turn_at_the_first_forecast_time) {
+  // Two turning cars and one going straight, from a random scene (planner_properties): the third's
+  // clearances are the same under every forecast time. The search once left it at τ_9, where the
+  // climb from the best common forecast time had put it.
+  plan_input in = ego_only(6.3438337111893253);
+  in.time = 5.4396078486842114;
+  in.ego.pose = {{13.204015218757313, 32.454223024924516}, 1.0469288361970559};
+  in.nominal = {0.18635707468596197, -0.0065757366397270253};
+  in.obstacles.push_back(vehicle(1, {{36.170453933644708, 54.918530679431768}, -2.4926541139036456}, 9.8020980447677388,
+                                 -0.28062679892815, in.time));
+  in.obstacles.push_back(vehicle(2, {{17.800764894639538, 64.369612019356026}, -1.3936727006564296}, 11.692041613790883,
+                                 -0.47506197695140, in.time));
+  in.obstacles.push_back(vehicle(3, {{9.4172358201392186, 36.770643023234761}, 0.61415796012678836}, 4.7824192659832683,
+                                 0.0, in.time));
+  in.obstacles[0].shape = rectangle{3.7328799434860547, 1.8286305848242612};
+  in.obstacles[1].shape = rectangle{4.5533023884136785, 1.6439936542261866};
+  in.obstacles[2].shape = rectangle{4.7798562741097443, 1.7131324622221671};
+  const plan_result fast = plan(in);
+  in.config.assignment_search = assignment_search_kind::exhaustive;
+  const plan_result exhaustive = plan(in);
+  ASSERT_TRUE(fast.ok() && exhaustive.ok()) << fast.error << exhaustive.error;
+  ASSERT_TRUE(fast.obstacles[2].relevant);
+  ASSERT_EQ(fast.obstacles[2].motion.yaw_rate, 0.0);
+  // Where the exhaustive search's tie rule puts it.
+  EXPECT_EQ(exhaustive.obstacles[2].forecast_index, 0u);
+  EXPECT_EQ(fast.obstacles[2].forecast_index, 0u);
+  EXPECT_NEAR(std::max(fast.mi_brake_selected, fast.mi_accelerate_selected),
+              std::max(exhaustive.mi_brake_selected, exhaustive.mi_accelerate_selected), 0.02);
+}
+
 TEST(planner, work_counts_are_zero_without_relevant_obstacles_and_grow_with_interaction) {
   plan_input far = ego_only(12.0);
   far.obstacles.push_back(vehicle(7, {{300.0, 0.0}, pi}, 15.0, 0.0, far.time));

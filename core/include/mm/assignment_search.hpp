@@ -50,7 +50,8 @@ forecast_assignment exhaustive_assignment_search(const assignment_problem& probl
 /// from two starts: every obstacle at its individually best forecast time, and the best common
 /// forecast time (each obstacle capped to its candidates). The better result wins. With a rough
 /// room, the ascent climbs by it, and every assignment it met whose rough room is within
-/// `rough_margin` of the best is ranked by its room.
+/// `rough_margin` of the best is ranked by its room. A problem with one assignment (every obstacle
+/// has one candidate) returns it after one call of `room`.
 forecast_assignment coordinate_ascent_assignment_search(const assignment_problem& problem);
 
 }  // namespace mm
