@@ -377,7 +377,7 @@ ego_sweep::placement ego_sweep::local_placement_at(std::size_t m, double t) cons
   return maneuver_local_placement(ego_.speed, samples_.maneuvers[m], t, window_.horizon, ego_.limits.speed_cap);
 }
 
-const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
+void ego_sweep::complete_straight(std::size_t m) const {
   straight_part& part = straight_[m];
   if (straight_known_[m] == unknown) {
     // maneuver_local_placement's values for t > T_h, in its order of operations: in the ego's
@@ -398,7 +398,6 @@ const ego_sweep::straight_part& ego_sweep::straight(std::size_t m) const {
     part.velocity = part.speed * world.direction;
     straight_known_[m] = known;
   }
-  return part;
 }
 
 void ego_sweep::fill(std::size_t k, std::size_t m) const {

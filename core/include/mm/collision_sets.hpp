@@ -258,7 +258,11 @@ class ego_sweep {
   std::vector<double> times_;
   vec2 start_rotation_;  ///< (cos, sin) of the start heading
   /// `straight_part` of sample m, computed on first use.
-  const straight_part& straight(std::size_t m) const;
+  const straight_part& straight(std::size_t m) const {
+    if (straight_known_[m] != known) complete_straight(m);
+    return straight_[m];
+  }
+  void complete_straight(std::size_t m) const;
   mutable std::unique_ptr<straight_part[]> straight_;  ///< [m], valid as far as `straight_known_` says
   /// What `straight_` holds of a sample: nothing, its ego-frame values (kept across restarts at the
   /// same speed), or everything.
