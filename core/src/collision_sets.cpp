@@ -189,6 +189,26 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
     }
     ++local_generation_;
   }
+  // The arc lengths' rows: the grids' are kept at the same speed (their samples are), the
+  // nominal-curvature columns' found anew, and their cached arc lengths forgotten.
+  if (kind == start_kind::same_speed && travel_row_.size() == sample_count_) {
+    assign_travel_rows(kept);
+  } else {
+    assign_travel_rows(0);
+    grid_travel_rows_ = 0;
+    const std::size_t grids = samples_.brake.samples.size() + samples_.accelerate.samples.size();
+    for (std::size_t m = 0; m < grids && m < sample_count_; ++m) {
+      grid_travel_rows_ = std::max<std::size_t>(grid_travel_rows_, travel_row_[m] + 1);
+    }
+  }
+  const std::size_t travel_size = row_acceleration_.size() * time_count_;
+  if (travel_known_.size() != travel_size || local_generation_ == 1) {
+    // New rows, or the stamps began again: nothing cached is valid under the new stamp.
+    travel_known_.assign(travel_size, 0);
+    travel_.resize(travel_size);
+  } else {
+    std::fill(travel_known_.begin() + static_cast<std::ptrdiff_t>(grid_travel_rows_ * time_count_), travel_known_.end(), 0);
+  }
   largest_speed_ = speed_after(ego.speed, ego.limits.max_acceleration, horizon, cap);
   largest_point_speed_ = largest_speed_ * (1.0 + max_curvature(ego.speed, ego.limits) * ego_radius_);
   // Every sample's reference point lies within its arc length of the start, and no sample travels
@@ -400,8 +420,41 @@ void ego_sweep::complete_straight(std::size_t m) const {
   }
 }
 
+void ego_sweep::assign_travel_rows(std::size_t first) {
+  travel_row_.resize(sample_count_);
+  row_acceleration_.resize(first == 0 ? 0 : grid_travel_rows_);
+  for (std::size_t m = first; m < sample_count_; ++m) {
+    const double a = samples_.maneuvers[m].acceleration;
+    std::size_t row = row_acceleration_.size();
+    if (m > 0 && m > first && row_acceleration_[travel_row_[m - 1]] == a) {
+      row = travel_row_[m - 1];
+    } else {
+      for (std::size_t r = 0; r < row_acceleration_.size(); ++r) {
+        if (row_acceleration_[r] == a) {
+          row = r;
+          break;
+        }
+      }
+    }
+    if (row == row_acceleration_.size()) row_acceleration_.push_back(a);
+    travel_row_[m] = static_cast<std::uint32_t>(row);
+  }
+}
+
+double ego_sweep::travel(std::size_t k, std::size_t m) const {
+  const std::size_t index = travel_row_[m] * time_count_ + k;
+  if (travel_known_[index] != local_generation_) {
+    travel_[index] = travelled_distance(ego_.speed, row_acceleration_[travel_row_[m]], times_[k], ego_.limits.speed_cap);
+    travel_known_[index] = local_generation_;
+  }
+  return travel_[index];
+}
+
 void ego_sweep::fill(std::size_t k, std::size_t m) const {
-  const placement l = local_placement_at(m, times_[k]);
+  // At t ≤ T_h: maneuver_local_placement's arc, from its row's arc length.
+  const double t = times_[k];
+  const placement l =
+      t > window_.horizon ? local_placement_at(m, t) : arc_placement(travel(k, m), samples_.maneuvers[m].curvature);
   const std::size_t index = placement_index(k, m);
   local_[index] = {l.position.x, l.position.y, l.direction.x, l.direction.y};
   local_known_[index] = local_generation_;
@@ -429,14 +482,28 @@ namespace {
 /// is skipped only when it provably cannot matter, to the last bit.
 constexpr double rounding_slack = 1e-12;
 
-/// First time index after k at which a quantity `gap` above the target, changing at most at
-/// `rate`, could reach the target (k + 1 when it is not above).
-std::size_t first_possible(std::size_t k, double gap, double rate, double time_step) {
+/// How fast a gap can close, in sample steps per metre: 1 / (rate · time_step), +∞ for a rate
+/// of 0 (found once per walk, so that its steps multiply instead of divide).
+struct closing_speed {
+  double steps_per_metre;
+};
+
+closing_speed closing_at(double rate, double time_step) {
+  return {rate > 0.0 ? 1.0 / (rate * time_step) : std::numeric_limits<double>::infinity()};
+}
+
+/// First time index after k at which a quantity `gap` above the target, closing at most at
+/// `speed`, could reach the target (k + 1 when it is not above). The factor 1 − 10⁻⁹ exceeds the
+/// rounding of the reciprocal by far, so no time is skipped at which the gap could have closed.
+std::size_t first_possible(std::size_t k, double gap, closing_speed speed) {
   if (!(gap > 0.0)) return k + 1;
-  if (rate <= 0.0) return std::numeric_limits<std::size_t>::max();
-  const double steps = gap * (1.0 - 1e-9) / (rate * time_step);
+  const double steps = gap * (1.0 - 1e-9) * speed.steps_per_metre;
   if (steps >= 1e9) return std::numeric_limits<std::size_t>::max();
   return k + static_cast<std::size_t>(steps) + 1;
+}
+
+std::size_t first_possible(std::size_t k, double gap, double rate, double time_step) {
+  return first_possible(k, gap, closing_at(rate, time_step));
 }
 
 /// Below this many sample steps of wait from the largest rates, the raster also bounds the centres'
@@ -557,6 +624,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   walk_cap_ = cap + distance_rate_ * step / 2.0;
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius + rounding_slack;
   centre_rate_ = sweep.largest_speed() + motion.speed;
+  centre_steps_ = closing_at(centre_rate_, step).steps_per_metre;
+  distance_steps_ = closing_at(distance_rate_, step).steps_per_metre;
   if (const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape)) {
     ego_half_ = {ego_shape->length / 2.0, ego_shape->width / 2.0};
     if (const auto* r = std::get_if<rectangle>(&obstacle.shape)) {
@@ -760,9 +829,8 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   ++work_.bound_checks;
   // The first time at which a gap [m] above zero can close, from the largest rates over the window.
   const auto until = [&](double gap, bool centres) {
-    const double rate = single ? (centres ? centre_rate(b.centre) : distance_rate(b.centre))
-                               : (centres ? centre_rate_ : distance_rate_);
-    return first_possible(k, gap, rate, step);
+    if (!single) return first_possible(k, gap, closing_speed{centres ? centre_steps_ : distance_steps_});
+    return first_possible(k, gap, centres ? centre_rate(b.centre) : distance_rate(b.centre), step);
   };
   // Every sample of the block is within `spread` of the centre's placement: its signed distance −
   // margin lies in [low − spread, high + spread], with low and high bounds of the centre's.
@@ -1092,6 +1160,8 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
   }
   // Looks at time index k and returns the next one that can be below the running minimum (or the
   // walking cap: above it every value clamps to the cap; or the ceiling).
+  const closing_speed centre_closing = closing_at(centre, step);
+  const closing_speed closing = closing_at(rate, step);
   const auto look = [&](std::size_t k, const obstacle_at& o, running_minimum& r, double ceiling) {
     // Every value below −walk_cap clamps to −cap: once the minimum is there, nothing can change it.
     if (std::min(r.value, walk_cap_) <= -walk_cap_) return std::numeric_limits<std::size_t>::max();
@@ -1099,12 +1169,12 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
     const ego_sweep::placement p = sweep_.at(k, m);
     ++work_.bound_checks;
     const double bound = norm(p.position - o.position) - reach_ - margin;
-    if (bound >= known) return first_possible(k, bound - known, centre, step);
+    if (bound >= known) return first_possible(k, bound - known, centre_closing);
     const lower_bound at = distance_or_bound(p, o, known);
-    if (!at.exact) return first_possible(k, at.value - known, rate, step);
+    if (!at.exact) return first_possible(k, at.value - known, closing);
     ++work_.distance_evaluations;
     r.update(at.value, k);
-    return first_possible(k, at.value - std::min({r.value, walk_cap_, ceiling}), rate, step);
+    return first_possible(k, at.value - std::min({r.value, walk_cap_, ceiling}), closing);
   };
   running_minimum r;
   if (straight > -walk_cap_) {
@@ -1168,6 +1238,8 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
     if (!straight_apart(part, ceiling) && straight_within(part, ceiling + rounding_slack)) return exact(forecast, m);
   }
   std::size_t k = 0;
+  const closing_speed centre_closing = closing_at(centre, step);
+  const closing_speed closing = closing_at(rate, step);
   // A walk over the shared times (kept from an earlier exact value) bounds them all.
   const std::size_t shared = shared_end(i);
   if (const prefix_walk* prefix = walked_prefix(m); shared > 0 && prefix != nullptr && prefix->until >= shared) {
@@ -1180,7 +1252,7 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
     ++work_.bound_checks;
     const double bound = norm(p.position - o.position) - reach_ - margin;
     if (bound >= limit) {
-      k = first_possible(k, bound - limit, centre, step);
+      k = first_possible(k, bound - limit, centre_closing);
       continue;
     }
     const lower_bound at = distance_or_bound(p, o, limit);
@@ -1188,7 +1260,7 @@ double clearance_field::exact_below(std::size_t forecast, std::size_t m, double 
       ++work_.distance_evaluations;
       if (at.value < limit) return exact(forecast, m);
     }
-    k = first_possible(k, at.value - limit, rate, step);
+    k = first_possible(k, at.value - limit, closing);
   }
   if (floor.empty()) floor.assign(sweep_.sample_count(), -cap_);
   floor[m] = ceiling;
@@ -1244,6 +1316,7 @@ double clearance_field::floor_of_all(std::size_t m) {
     target = lifted + std::abs(lifted) * 1e-12 + 1e-12;
   }
   double low = walk_cap_;
+  const closing_speed closing = closing_at(rate, step);
   for (std::size_t k = 0; k < walked;) {
     const double t = times[k];
     const double radius = std::min(0.5 * turn * t * t, 2.0 * motion.speed * t) * (1.0 + 1e-12) + 1e-9;
@@ -1251,7 +1324,7 @@ double clearance_field::floor_of_all(std::size_t m) {
     const double bound =
         norm(sweep_.at(k, m).position - (start + (motion.speed * t) * along)) - radius - reach_ - margin;
     low = std::min(low, bound);
-    k = first_possible(k, bound - std::min(low, target), rate, step);
+    k = first_possible(k, bound - std::min(low, target), closing);
   }
   // Between sample times the signed distance falls by at most θ.
   floor = low - theta;

@@ -52,24 +52,29 @@ struct local_motion {
   double turn;
 };
 
-local_motion move(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap) {
-  const double s = travelled_distance(initial_speed, u.acceleration, std::min(t, horizon), speed_cap);
-  const double turn = u.curvature * s;
-  vec2 local;
-  vec2 along;
+/// `arc_placement`, and the turn κs [rad].
+local_motion arc_motion(double s, double curvature) {
+  const double turn = curvature * s;
   if (std::abs(turn) < 1e-4) {
     // Series of arc_point and of the direction: the next terms are below the rounding.
     const double turn2 = turn * turn;
-    local = {s * (1.0 - turn2 / 6.0), s * (turn / 2.0 - turn * turn2 / 24.0)};
-    along = {1.0 - turn2 / 2.0, turn - turn * turn2 / 6.0};
-  } else {
-    const double half_sine = std::sin(turn / 2.0);
-    const double half_cosine = std::cos(turn / 2.0);
-    const double sine = 2.0 * half_sine * half_cosine;
-    const double versine = 2.0 * half_sine * half_sine;  // 1 − cos, without cancellation
-    local = {s * (sine / turn), s * (versine / turn)};
-    along = {1.0 - versine, sine};
+    return {{{s * (1.0 - turn2 / 6.0), s * (turn / 2.0 - turn * turn2 / 24.0)},
+             {1.0 - turn2 / 2.0, turn - turn * turn2 / 6.0}},
+            turn};
   }
+  const double half_sine = std::sin(turn / 2.0);
+  const double half_cosine = std::cos(turn / 2.0);
+  const double sine = 2.0 * half_sine * half_cosine;
+  const double versine = 2.0 * half_sine * half_sine;  // 1 − cos, without cancellation
+  return {{{s * (sine / turn), s * (versine / turn)}, {1.0 - versine, sine}}, turn};
+}
+
+local_motion move(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap) {
+  const local_motion arc =
+      arc_motion(travelled_distance(initial_speed, u.acceleration, std::min(t, horizon), speed_cap), u.curvature);
+  vec2 local = arc.at.position;
+  const vec2 along = arc.at.direction;
+  const double turn = arc.turn;
   if (t > horizon) {
     const double straight = speed_after(initial_speed, u.acceleration, horizon, speed_cap) * (t - horizon);
     local = local + straight * along;
@@ -78,6 +83,8 @@ local_motion move(double initial_speed, const maneuver& u, double t, double hori
 }
 
 }  // namespace
+
+placement arc_placement(double arc_length, double curvature) { return arc_motion(arc_length, curvature).at; }
 
 placement maneuver_local_placement(double initial_speed, const maneuver& u, double t, double horizon,
                                    double speed_cap) {

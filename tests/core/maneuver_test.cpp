@@ -68,6 +68,23 @@ TEST(maneuver, maneuver_pose_follows_the_arc_then_drives_straight) {
   EXPECT_NEAR(std::atan2(direction.y, direction.x), wrap_angle(at_horizon.heading), 1e-12);
 }
 
+TEST(maneuver, the_arc_placement_of_the_travelled_distance_is_the_local_placement_bit_for_bit) {
+  // Up to the horizon (straight-line turns, tiny turns on the series, stops and the speed cap).
+  for (const double v0 : {0.0, 3.0, 12.5, 29.9}) {
+    for (const double a : {-7.0, -1.5, 0.0, 2.0, 3.0}) {
+      for (const double kappa : {-0.18, -1e-6, 0.0, 3e-5, 0.05, 0.18}) {
+        for (const double t : {0.0, 0.05, 0.35, 0.999, 1.0}) {
+          const maneuver u{a, kappa};
+          const placement local = maneuver_local_placement(v0, u, t, 1.0, 30.0);
+          const placement arc = arc_placement(travelled_distance(v0, a, t, 30.0), kappa);
+          EXPECT_TRUE(local.position == arc.position && local.direction == arc.direction)
+              << "v0 " << v0 << " a " << a << " kappa " << kappa << " t " << t;
+        }
+      }
+    }
+  }
+}
+
 TEST(maneuver, a_braking_maneuver_that_stops_stays_stopped) {
   const pose start{{0.0, 0.0}, 0.0};
   const maneuver u{-7.0, 0.05};

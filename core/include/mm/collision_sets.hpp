@@ -279,6 +279,20 @@ class ego_sweep {
   mutable std::vector<std::uint8_t> local_known_;
   std::uint8_t local_generation_ = 0;
   std::size_t time_count_ = 0;          ///< `times_.size()`
+  /// Samples of one acceleration share their arc lengths s(t): `travel_row_[m]` is sample m's row,
+  /// `row_acceleration_` each row's acceleration (the grids' rows first, `grid_travel_rows_` of
+  /// them, kept across restarts; then the nominal-curvature columns'), and `travel_[row ·
+  /// time_count_ + k]` = `travelled_distance` at t_k ≤ T_h, valid where `travel_known_` holds
+  /// `local_generation_`.
+  std::vector<std::uint32_t> travel_row_;
+  std::vector<double> row_acceleration_;
+  std::size_t grid_travel_rows_ = 0;
+  mutable std::vector<double> travel_;
+  mutable std::vector<std::uint8_t> travel_known_;
+  /// s(t_k) of sample m's acceleration [m], t_k ≤ T_h.
+  double travel(std::size_t k, std::size_t m) const;
+  /// Rows of the samples from `first` on (see `travel_row_`).
+  void assign_travel_rows(std::size_t first);
   double largest_speed_ = 0.0;
   double largest_point_speed_ = 0.0;
   std::vector<double> reach_radius_;
@@ -528,6 +542,8 @@ class clearance_field {
   double reach_;          ///< bounding radii of ego and obstacle, and the rounding slack [m]
   double centre_rate_;    ///< Lipschitz constant of the reference points' distance [m/s]
   double distance_rate_;  ///< L: Lipschitz constant of the signed distance [m/s]
+  double centre_steps_;    ///< 1 / (centre_rate_ · time step) [1/m]: sample steps a gap of 1 m needs to close
+  double distance_steps_;  ///< 1 / (distance_rate_ · time step) [1/m]
   bool inert_ = false;
   bool independent_ = false;
   std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k (every τ when ω = 0)

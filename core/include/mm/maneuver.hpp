@@ -57,6 +57,11 @@ struct placement {
 /// κs give both: sin κs = 2 sin(κs/2) cos(κs/2), 1 − cos κs = 2 sin²(κs/2).
 placement maneuver_local_placement(double initial_speed, const maneuver& u, double t, double horizon, double speed_cap);
 
+/// The arc part of `maneuver_local_placement`: the placement after arc length s [m] on an arc of
+/// curvature κ [1/m], in the frame of its start; `maneuver_local_placement` at t ≤ horizon is
+/// `arc_placement(travelled_distance(v0, a, t, v_cap), κ)`, bit for bit.
+placement arc_placement(double arc_length, double curvature);
+
 /// `maneuver_local_placement` in the world: rotated by `start_direction` = (cos, sin) of
 /// `start.heading` and moved to `start.position`. What the collision tests place the ego by.
 placement maneuver_placement(const pose& start, vec2 start_direction, double initial_speed, const maneuver& u,
