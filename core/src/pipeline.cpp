@@ -406,7 +406,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     const obstacle_track& track = in.obstacles[j];
     obstacle_assessment assessment;
     assessment.id = track.id;
-    assessment.motion = estimate_motion(track, config.history_window, in.time);
+    assessment.motion = track.motion ? *track.motion : estimate_motion(track, config.history_window, in.time);
     assessment.time_to_collision = no_collision;
     const forecast_obstacle obstacle{assessment.motion, track.shape};
     assessment.relevant = can_interact(ego, obstacle, config);

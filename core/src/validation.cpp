@@ -141,6 +141,11 @@ std::optional<std::string> validation_error(const plan_input& in) {
       c.require(!(o.history.back().time > in.time + 1e-9), [&] { return field() + ".history.back().time"; },
                 o.history.back().time, [&] { return "no later than the planning time " + number(in.time) + " s"; });
     }
+    if (!c.error && o.motion) {
+      c.pose([&] { return field() + ".motion.pose"; }, o.motion->pose);
+      c.non_negative([&] { return field() + ".motion.speed"; }, o.motion->speed, "m/s");
+      c.finite([&] { return field() + ".motion.yaw_rate"; }, o.motion->yaw_rate);
+    }
   }
   return c.error;
 }

@@ -128,6 +128,7 @@ struct simulation::impl {
     /// vehicle holds — consecutive steps in range, at most `track_capacity`.
     std::vector<std::uint32_t> seen;
     std::size_t track_capacity = 2;
+    std::size_t estimate_window = 0;  ///< with exact sensing: its history window's index in `estimate_windows`
     bool frozen = false;  ///< crashed: its tracks were copied out of `observed` and no longer change
     std::vector<detail::noise_source> noise;       ///< [target id]
     metrics_state metrics;
@@ -186,6 +187,19 @@ struct simulation::impl {
   /// only how many of them it has seen. The same histories, from memory that stays in the cache.
   bool exact_sensing = false;
   std::vector<detail::observation_ring> observed;  ///< [agent id], with exact sensing
+  /// With exact sensing every observer that holds enough of a target's observations estimates the
+  /// same motion from them: it is estimated once per step and target (and history window), and
+  /// given to the planners as `obstacle_track::motion`. `used` is how many of the last
+  /// observations the estimate reads (those within the window, at least two): an observer holding
+  /// at least that many would estimate exactly this; one holding fewer estimates its own.
+  struct shared_motion {
+    std::size_t used = std::numeric_limits<std::size_t>::max();
+    mm::motion_estimate motion;
+  };
+  std::vector<double> estimate_windows;       ///< the vehicles' distinct history windows [s]
+  std::vector<shared_motion> shared_motions;  ///< [agent id · estimate_windows.size() + window]
+  double shared_motion_time = std::numeric_limits<double>::quiet_NaN();  ///< when they were estimated [s]
+  mm::obstacle_track estimate_scratch;
   std::vector<crash_event> crash_log;
   std::size_t step = 0;
   std::size_t last_step = 0;
@@ -220,6 +234,13 @@ struct simulation::impl {
       std::size_t capacity = 0;
       for (const vehicle& v : vehicles) capacity = std::max(capacity, v.track_capacity);
       observed.assign(infos.size(), detail::observation_ring(capacity));
+      for (vehicle& v : vehicles) {
+        const double window = v.spec->planner.history_window;
+        const auto found = std::find(estimate_windows.begin(), estimate_windows.end(), window);
+        v.estimate_window = static_cast<std::size_t>(found - estimate_windows.begin());
+        if (found == estimate_windows.end()) estimate_windows.push_back(window);
+      }
+      shared_motions.resize(infos.size() * estimate_windows.size());
     }
     advance_agents(0.0, true);
     detect_crashes();
@@ -506,8 +527,11 @@ struct simulation::impl {
       track.id = static_cast<std::uint32_t>(j);
       track.kind = kind;
       track.shape = infos[j].shape;
+      track.motion.reset();
       if (shared) {
         ring.copy_last_to(size, track.history);
+        const shared_motion& motion = shared_motions[j * estimate_windows.size() + v.estimate_window];
+        if (size >= motion.used && shared_motion_time == input.time) track.motion = motion.motion;
       } else {
         ring.copy_to(track.history);
       }
@@ -534,7 +558,9 @@ struct simulation::impl {
         } else {
           observed[j].clear();
         }
+        estimate_shared_motion(j);
       }
+      shared_motion_time = now();
     }
     const std::size_t jobs = std::min(std::max<std::size_t>(options.jobs, 1), vehicles.size());
     if (planners.size() < jobs) planners.resize(jobs);
@@ -560,6 +586,26 @@ struct simulation::impl {
     // The first failure in id order, whatever the threads' timing.
     for (const std::exception_ptr& error : errors) {
       if (error) std::rethrow_exception(error);
+    }
+  }
+
+  /// `shared_motions` of target j, from its observations of this step (`estimate_motion`).
+  void estimate_shared_motion(agent_id j) {
+    const detail::observation_ring& ring = observed[j];
+    const mm::obstacle_kind kind = obstacle_kind_of(infos[j].kind);
+    const bool standing = kind == mm::obstacle_kind::static_obstacle;
+    for (std::size_t w = 0; w < estimate_windows.size(); ++w) {
+      shared_motion& shared = shared_motions[j * estimate_windows.size() + w];
+      shared.used = std::numeric_limits<std::size_t>::max();
+      if (ring.size() < (standing ? 1U : 2U)) continue;
+      estimate_scratch.kind = kind;
+      ring.copy_to(estimate_scratch.history);
+      const std::vector<mm::observation>& history = estimate_scratch.history;
+      // The observations estimate_motion reads: the last one and those back to the window's start.
+      std::size_t first = standing ? history.size() - 1 : history.size() - 2;
+      while (!standing && first > 0 && history[first - 1].time >= history.back().time - estimate_windows[w]) --first;
+      shared.used = history.size() - first;
+      shared.motion = mm::estimate_motion(estimate_scratch, estimate_windows[w], now());
     }
   }
 

@@ -172,6 +172,34 @@ TEST(planner_properties, the_fast_search_holds_every_obstacle_that_does_not_turn
   EXPECT_GT(held, count / 4) << "too few relevant obstacles that do not turn: this test checks little";
 }
 
+TEST(planner_properties, a_given_motion_equal_to_the_estimate_plans_the_same_and_another_one_is_used) {
+  std::mt19937_64 rng(testing::property_seed() + 13);
+  const std::size_t count = testing::property_count(60);
+  std::size_t changed = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = random_setting(rng);
+    if (in.obstacles.empty()) continue;
+    plan_input given = in;
+    for (obstacle_track& track : given.obstacles) track.motion = estimate_motion(track, in.config.history_window, in.time);
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    const plan_result own = plan(in);
+    const plan_result shared = plan(given);
+    ASSERT_TRUE(own.ok() && shared.ok()) << own.error << shared.error;
+    expect_same_decision(own, shared);
+    EXPECT_EQ(own.mi_brake, shared.mi_brake);
+    EXPECT_EQ(own.mi_accelerate, shared.mi_accelerate);
+    // The planner uses a given motion: the first obstacle standing still where it was last seen.
+    plan_input other = given;
+    other.obstacles[0].motion->speed = 0.0;
+    other.obstacles[0].motion->yaw_rate = 0.0;
+    const plan_result moved = plan(other);
+    ASSERT_TRUE(moved.ok()) << moved.error;
+    EXPECT_EQ(moved.obstacles[0].motion.speed, 0.0);
+    changed += moved.obstacles[0].motion.pose.position == other.obstacles[0].motion->pose.position ? 1 : 0;
+  }
+  EXPECT_GT(changed, 0U);
+}
+
 TEST(planner_properties, a_planner_that_reuses_its_previous_step_plans_what_plan_plans_bit_for_bit) {
   // Runs of steps of one vehicle: the speed, limits and footprint held for a few steps with new
   // poses, nominal maneuvers, obstacles and settings, then changed.

@@ -99,6 +99,19 @@ TEST(validation, a_history_too_short_or_out_of_order_is_rejected) {
   EXPECT_TRUE(plan(in).ok());
 }
 
+TEST(validation, a_given_motion_that_is_not_finite_or_runs_backwards_is_rejected) {
+  const auto with_motion = [](plan_input& in) { in.obstacles[0].motion = motion_estimate{{{20.0, 10.0}, -1.5}, 8.0, 0.1}; };
+  expect_rejected([&](plan_input& in) { with_motion(in); in.obstacles[0].motion->speed = -1.0; },
+                  "obstacles[0] (id 5).motion.speed", "≥ 0");
+  expect_rejected([&](plan_input& in) { with_motion(in); in.obstacles[0].motion->yaw_rate = nan; },
+                  "obstacles[0] (id 5).motion.yaw_rate", "finite");
+  expect_rejected([&](plan_input& in) { with_motion(in); in.obstacles[0].motion->pose.position.y = inf; },
+                  "obstacles[0] (id 5).motion.pose.position.y", "finite");
+  plan_input in = valid_input();
+  with_motion(in);
+  EXPECT_TRUE(plan(in).ok());
+}
+
 TEST(validation, an_invalid_result_carries_no_command_to_act_on) {
   plan_input in = valid_input();
   in.ego.speed = nan;

@@ -366,6 +366,35 @@ TEST(simulation, planning_the_vehicles_of_a_step_on_several_threads_gives_bit_id
   }
 }
 
+TEST(simulation, with_exact_sensing_the_inputs_carry_the_motion_each_history_gives) {
+  // Every observer of a road user estimates the same motion from the same observations: the
+  // simulator estimates it once and hands it over; it must be what the planner would estimate.
+  scenario s = six_crossing_vehicles();
+  s.noise = {};
+  simulation sim(s);
+  std::size_t given = 0;
+  std::size_t tracks = 0;
+  while (!sim.ended()) {
+    sim.step();
+    for (agent_id id = 0; id < sim.planning_vehicle_count(); ++id) {
+      const std::optional<mm::plan_input> input = sim.planning_input(id);
+      if (!input) continue;
+      for (const mm::obstacle_track& track : input->obstacles) {
+        ++tracks;
+        if (!track.motion) continue;
+        ++given;
+        mm::obstacle_track bare = track;
+        bare.motion.reset();
+        const mm::motion_estimate own = mm::estimate_motion(bare, input->config.history_window, input->time);
+        ASSERT_TRUE(own.pose.position == track.motion->pose.position && own.pose.heading == track.motion->pose.heading &&
+                    own.speed == track.motion->speed && own.yaw_rate == track.motion->yaw_rate)
+            << "vehicle " << id << ", target " << track.id << " at " << input->time << " s";
+      }
+    }
+  }
+  EXPECT_GT(given, tracks / 2) << "most tracks should carry the shared estimate";
+}
+
 TEST(simulation, a_run_without_the_map_columns_makes_the_same_decisions_bit_for_bit) {
   const auto record = [](bool map_columns) {
     run_options options;

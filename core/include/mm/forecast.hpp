@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -22,6 +23,13 @@ struct observation {
   double speed = 0.0;
 };
 
+/// The planner's estimate of an obstacle's motion at the planning time (spec §4).
+struct motion_estimate {
+  mm::pose pose;               ///< at the planning time
+  double speed = 0.0;      ///< v_j [m/s], ≥ 0
+  double yaw_rate = 0.0;   ///< ω_j [rad/s], counter-clockwise positive
+};
+
 /// An observed obstacle: its footprint and its observation history, oldest first, strictly
 /// increasing times. Vehicles and pedestrians need at least two observations.
 struct obstacle_track {
@@ -29,13 +37,11 @@ struct obstacle_track {
   obstacle_kind kind = obstacle_kind::vehicle;
   footprint shape = rectangle{};
   std::vector<observation> history;
-};
-
-/// The planner's estimate of an obstacle's motion at the planning time (spec §4).
-struct motion_estimate {
-  mm::pose pose;               ///< at the planning time
-  double speed = 0.0;      ///< v_j [m/s], ≥ 0
-  double yaw_rate = 0.0;   ///< ω_j [rad/s], counter-clockwise positive
+  /// The motion at the planning time when the caller estimated it already (a tracker of its own,
+  /// or a simulator that estimates each road user once for all its observers): the planner then
+  /// uses it instead of `estimate_motion(track, config.history_window, time)` (spec §4). Empty:
+  /// the planner estimates it from the history.
+  std::optional<motion_estimate> motion;
 };
 
 /// Least-squares estimate of speed v_j and yaw rate ω_j from the observations in the window
