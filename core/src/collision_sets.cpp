@@ -719,14 +719,21 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       }
       raster(shared_done, turning_[shared_done], shared);
     }
-    own = shared;
-    for (std::size_t k = shared_until; k < part_first_[i]; ++k) {
-      const obstacle_at o = obstacle_pose(i, k);
-      if (out_of_reach(k, o)) {
-        own.postpone(k);
-        continue;
+    if (shared_until < part_first_[i]) {
+      own = shared;
+      for (std::size_t k = shared_until; k < part_first_[i]; ++k) {
+        const obstacle_at o = obstacle_pose(i, k);
+        if (out_of_reach(k, o)) {
+          own.postpone(k);
+          continue;
+        }
+        raster(k, o, own);
       }
-      raster(k, o, own);
+    } else {
+      // No sample time of its own before the straight part, which reads and marks only the hits:
+      // the waiting lists (a link per block) need not be copied.
+      own.hit = shared.hit;
+      own.hit_at = shared.hit_at;
     }
     // The straight part: how close the obstacle comes to the disc that holds every sample's
     // reference point (its radius grows linearly there, the obstacle moves on a line), in closed
