@@ -426,7 +426,7 @@ void ego_sweep::assign_travel_rows(std::size_t first) {
   for (std::size_t m = first; m < sample_count_; ++m) {
     const double a = samples_.maneuvers[m].acceleration;
     std::size_t row = row_acceleration_.size();
-    if (m > 0 && m > first && row_acceleration_[travel_row_[m - 1]] == a) {
+    if (m > first && row_acceleration_[travel_row_[m - 1]] == a) {
       row = travel_row_[m - 1];
     } else {
       for (std::size_t r = 0; r < row_acceleration_.size(); ++r) {

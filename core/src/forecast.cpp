@@ -47,14 +47,20 @@ std::string_view to_string(obstacle_kind kind) {
   return "unknown";
 }
 
+std::size_t observations_read(const obstacle_track& track, double history_window) {
+  if (track.kind == obstacle_kind::static_obstacle) return 1;
+  const observation& last = track.history.back();
+  std::size_t first = track.history.size() - 2;
+  while (first > 0 && track.history[first - 1].time >= last.time - history_window) --first;
+  return track.history.size() - first;
+}
+
 motion_estimate estimate_motion(const obstacle_track& track, double history_window, double now) {
   const observation& last = track.history.back();
   if (track.kind == obstacle_kind::static_obstacle) return {last.pose, 0.0, 0.0};
 
-  std::size_t first = track.history.size() - 2;
-  while (first > 0 && track.history[first - 1].time >= last.time - history_window) --first;
-
-  const std::size_t count = track.history.size() - first;
+  const std::size_t count = observations_read(track, history_window);
+  const std::size_t first = track.history.size() - count;
   std::vector<double> times;
   std::vector<double> headings;
   std::vector<double> speeds;

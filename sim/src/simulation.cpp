@@ -593,18 +593,16 @@ struct simulation::impl {
   void estimate_shared_motion(agent_id j) {
     const detail::observation_ring& ring = observed[j];
     const mm::obstacle_kind kind = obstacle_kind_of(infos[j].kind);
-    const bool standing = kind == mm::obstacle_kind::static_obstacle;
+    const bool enough = ring.size() >= (kind == mm::obstacle_kind::static_obstacle ? 1U : 2U);
+    if (enough) {
+      estimate_scratch.kind = kind;
+      ring.copy_to(estimate_scratch.history);
+    }
     for (std::size_t w = 0; w < estimate_windows.size(); ++w) {
       shared_motion& shared = shared_motions[j * estimate_windows.size() + w];
       shared.used = std::numeric_limits<std::size_t>::max();
-      if (ring.size() < (standing ? 1U : 2U)) continue;
-      estimate_scratch.kind = kind;
-      ring.copy_to(estimate_scratch.history);
-      const std::vector<mm::observation>& history = estimate_scratch.history;
-      // The observations estimate_motion reads: the last one and those back to the window's start.
-      std::size_t first = standing ? history.size() - 1 : history.size() - 2;
-      while (!standing && first > 0 && history[first - 1].time >= history.back().time - estimate_windows[w]) --first;
-      shared.used = history.size() - first;
+      if (!enough) continue;
+      shared.used = mm::observations_read(estimate_scratch, estimate_windows[w]);
       shared.motion = mm::estimate_motion(estimate_scratch, estimate_windows[w], now());
     }
   }

@@ -46,6 +46,26 @@ TEST(forecast, only_the_history_window_is_used) {
   EXPECT_NEAR(m.speed, 6.0, 1e-9);
 }
 
+TEST(forecast, the_observations_read_are_those_of_the_window_and_a_history_ending_with_them_estimates_the_same) {
+  obstacle_track track;
+  track.history = testing::ctrv_history({{4.0, 1.0}, 0.7}, 8.0, 0.3, 3.0, 81, 0.01);  // 0.8 s of history
+  const std::size_t read = observations_read(track, 0.5);
+  EXPECT_GE(read, 50U);
+  EXPECT_LE(read, 51U);
+  EXPECT_EQ(observations_read(track, 0.001), 2U);  // at least the last two
+  const motion_estimate all = estimate_motion(track, 0.5, 3.0);
+  obstacle_track cut = track;
+  cut.history.erase(cut.history.begin(), cut.history.end() - static_cast<std::ptrdiff_t>(read));
+  EXPECT_EQ(observations_read(cut, 0.5), read);
+  const motion_estimate same = estimate_motion(cut, 0.5, 3.0);
+  EXPECT_TRUE(all.pose.position == same.pose.position && all.pose.heading == same.pose.heading &&
+              all.speed == same.speed && all.yaw_rate == same.yaw_rate);
+  cut.history.erase(cut.history.begin());  // one fewer: one fewer read
+  EXPECT_EQ(observations_read(cut, 0.5), read - 1);
+  track.kind = obstacle_kind::static_obstacle;
+  EXPECT_EQ(observations_read(track, 0.5), 1U);
+}
+
 TEST(forecast, noisy_observations_give_an_estimate_within_a_few_standard_errors) {
   std::mt19937_64 rng(11);
   std::normal_distribution<double> heading_noise(0.0, 0.5 * pi / 180.0);

@@ -195,9 +195,10 @@ TEST(planner_properties, a_given_motion_equal_to_the_estimate_plans_the_same_and
     const plan_result moved = plan(other);
     ASSERT_TRUE(moved.ok()) << moved.error;
     EXPECT_EQ(moved.obstacles[0].motion.speed, 0.0);
-    changed += moved.obstacles[0].motion.pose.position == other.obstacles[0].motion->pose.position ? 1 : 0;
+    EXPECT_EQ(moved.obstacles[0].motion.yaw_rate, 0.0);
+    changed += own.obstacles[0].motion.speed > 0.0 ? 1 : 0;  // the given motion differs from the estimate
   }
-  EXPECT_GT(changed, 0U);
+  EXPECT_GT(changed, count / 4) << "too few scenes whose first obstacle moves: this test checks little";
 }
 
 TEST(planner_properties, a_planner_that_reuses_its_previous_step_plans_what_plan_plans_bit_for_bit) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -53,6 +54,11 @@ struct obstacle_track {
 /// and then propagated by CTRV from t_last to `now` (≥ t_last). Static obstacles: the last pose,
 /// speed and yaw rate 0.
 motion_estimate estimate_motion(const obstacle_track& track, double history_window, double now);
+
+/// How many of the last observations of `track` `estimate_motion` reads: those within
+/// [t_last − history_window, t_last], at least the last two; the last one of a static obstacle.
+/// A history that ends with those observations gives the same estimate. Needs a non-empty history.
+std::size_t observations_read(const obstacle_track& track, double history_window);
 
 /// Forecast pose at time t ≥ 0 after the estimate, with forecast time τ [s] (spec §4): constant
 /// turn rate and velocity (CTRV) for t ≤ τ, then straight with the velocity vector reached at τ.
