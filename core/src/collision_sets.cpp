@@ -697,7 +697,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   raster_state& shared = scratch.shared_;
   const bool record = what == recording::first_overlaps;
   if (record) first_overlap_.assign(slots, {});
-  shared.reset(samples, times.size(), sweep.blocks().size(), record);
+  shared.reset(samples, times.size(), sweep.block_count(), record);
   for (const std::uint32_t root : sweep.roots()) shared.wait(0, root);
   std::size_t shared_done = 0;
   raster_state& own = scratch.own_;

@@ -148,6 +148,8 @@ class ego_sweep {
     for (std::uint32_t b = 0; b < blocks_.size(); ++b) block_of(b);
     return blocks_;
   }
+  /// `blocks().size()`, without taking any block's extents.
+  std::size_t block_count() const { return blocks_.size(); }
   /// Block `index`: `blocks()[index]`, its curvature extents taken from the grids on first use after
   /// a restart at a new speed (most blocks of a step are never looked at).
   const block& block_of(std::uint32_t index) const {
