@@ -24,6 +24,73 @@ maneuverability_pair maneuverability_indices(const maneuver_samples& samples, co
           maneuverability_index(samples, family::accelerate, colliding)};
 }
 
+sample_mask read_nodes_reference(const maneuver_samples& samples, const sample_mask& positive) {
+  sample_mask read(samples.size());
+  for (const family f : {family::brake, family::accelerate}) {
+    const displacement_set& set = samples.set(f);
+    if (set.degenerate) continue;
+    const std::size_t columns = set.curvature_count;
+    const std::size_t rows = set.acceleration_count;
+    const auto node = [&](std::size_t ia, std::size_t ic) { return samples.grid(f).begin + ia * columns + ic; };
+    const auto mark_if_different = [&](std::size_t a, std::size_t b) {
+      if (positive.test(a) != positive.test(b)) {
+        read.set(a);
+        read.set(b);
+      }
+    };
+    for (std::size_t ia = 0; ia < rows; ++ia) {
+      for (std::size_t ic = 0; ic < columns; ++ic) {
+        if (ic + 1 < columns) mark_if_different(node(ia, ic), node(ia, ic + 1));
+        if (ia + 1 < rows) mark_if_different(node(ia, ic), node(ia + 1, ic));
+        if (ia + 1 < rows && ic + 1 < columns) {
+          const bool p00 = positive.test(node(ia, ic));
+          const bool p10 = positive.test(node(ia, ic + 1));
+          const bool p01 = positive.test(node(ia + 1, ic));
+          const bool p11 = positive.test(node(ia + 1, ic + 1));
+          if (p00 == p11 && p10 == p01 && p00 != p10) {
+            for (const std::size_t m : {node(ia, ic), node(ia, ic + 1), node(ia + 1, ic), node(ia + 1, ic + 1)}) {
+              read.set(m);
+            }
+          }
+        }
+      }
+    }
+  }
+  return read;
+}
+
+void read_nodes(const maneuver_samples& samples, const sample_mask& positive, sample_mask& read) {
+  read.clear(samples.size());
+  for (const family f : {family::brake, family::accelerate}) {
+    const displacement_set& set = samples.set(f);
+    if (set.degenerate) continue;
+    const std::size_t columns = set.curvature_count;
+    const std::size_t rows = set.acceleration_count;
+    const std::size_t first = samples.grid(f).begin;
+    if (columns == 0 || rows == 0) continue;
+    if (columns > 63) {
+      read |= read_nodes_reference(samples, positive);
+      continue;
+    }
+    // Bit c of a row word is the node of column c; a sign change between columns c and c + 1 is
+    // bit c of row ^ (row >> 1), kept below the last column.
+    const std::uint64_t edges = (std::uint64_t{1} << (columns - 1)) - 1;
+    std::uint64_t below = positive.bits(first, columns);
+    for (std::size_t ia = 0; ia < rows; ++ia) {
+      const std::uint64_t row = below;
+      const std::uint64_t across = (row ^ (row >> 1)) & edges;
+      std::uint64_t marked = across | (across << 1);
+      if (ia + 1 < rows) {
+        below = positive.bits(first + (ia + 1) * columns, columns);
+        const std::uint64_t up = row ^ below;
+        marked |= up;
+        read.add_bits(first + (ia + 1) * columns, columns, up);
+      }
+      read.add_bits(first + ia * columns, columns, marked);
+    }
+  }
+}
+
 double positive_fraction(double c0, double c1) {
   const bool p0 = c0 > 0.0;
   const bool p1 = c1 > 0.0;

@@ -217,11 +217,12 @@ class evaluator {
       return;
     }
     // The signs of the sampled collisions, ±cap: the values come where the indices read them.
-    c.assign(samples_.size(), clearance_cap);
+    negative_.clear(samples_.size());
     for (const auto& [j, i] : parts) {
-      if (fields_[j].inert()) continue;
-      fields_[j].collisions(i).for_each([&](std::size_t m) { c[m] = -clearance_cap; });
+      if (!fields_[j].inert()) negative_ |= fields_[j].collisions(i);
     }
+    c.assign(samples_.size(), clearance_cap);
+    negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
     if (!rough) make_read_values_exact(parts, c);
   }
 
@@ -272,11 +273,11 @@ class evaluator {
   }
 
   /// Replaces the placeholders (±cap) by the exact minimum over the obstacles wherever the
-  /// interpolating indices read a value: at both ends of every grid edge whose ends differ in sign,
-  /// and at the four corners of saddle cells (whose centre value decides them). Elsewhere a cell
-  /// reads signs only (`positive_fraction`). A sample that overlaps no obstacle at a sample time
-  /// but whose exact clearance is ≤ 0 (a contact between sample times) collides: its other
-  /// neighbours are read in turn, until the boundary is where the exact values put it.
+  /// interpolating indices read a value (`read_nodes`: both ends of every grid edge whose ends
+  /// differ in sign). Elsewhere a cell reads signs only (`positive_fraction`). A sample that
+  /// overlaps no obstacle at a sample time but whose exact clearance is ≤ 0 (a contact between
+  /// sample times) collides: its other neighbours are read in turn, until the boundary is where the
+  /// exact values put it. `c` holds the signs of `negative_` (−cap there, +cap elsewhere).
   void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> all_parts, clearance_set& c) {
     // Inert obstacles are +cap everywhere: they cannot lower a minimum.
     live_parts_.clear();
@@ -287,65 +288,23 @@ class evaluator {
     forecast_of_.assign(fields_.size(), absent);
     for (const auto& [j, i] : parts) forecast_of_[j] = i;
     const std::size_t size = c.size();
-    positive_.resize(size);
-    valued_.assign(size, 0);
-    std::size_t positives = 0;
-    {
-      // Raw pointers: a store through std::uint8_t may alias anything, vector members included.
-      const double* value = c.data();
-      std::uint8_t* sign = positive_.data();
-      for (std::size_t m = 0; m < size; ++m) {
-        const bool p = value[m] > 0.0;
-        sign[m] = p ? 1 : 0;
-        positives += p ? 1 : 0;
-      }
-    }
+    positive_.assign_complement(negative_);
+    valued_.clear(size);
+    std::size_t positives = positive_.count();
     for (bool changed = true; changed;) {
       changed = false;
       if (positives == 0 || positives == size) return;  // one sign everywhere: nothing is read
-      mark_read_nodes();
-      for (std::size_t m = 0; m < size; ++m) {
-        if (!read_[m] || valued_[m]) continue;
-        valued_[m] = 1;
+      read_nodes(samples_, positive_, read_);
+      read_.subtract(valued_);
+      valued_ |= read_;
+      read_.for_each([&](std::size_t m) {
         c[m] = exact_minimum(parts, m);
-        if (positive_[m] && !(c[m] > 0.0)) {
-          positive_[m] = 0;
+        if (positive_.test(m) && !(c[m] > 0.0)) {
+          positive_.reset(m);
           --positives;
           changed = true;
         }
-      }
-    }
-  }
-
-  /// `read_[m]` = 1 where the interpolating indices read the value of sample m under the signs
-  /// `positive_`: the ends of sign-changing grid edges and the corners of saddle cells.
-  void mark_read_nodes() {
-    const std::size_t size = positive_.size();
-    read_.assign(size, 0);
-    const std::uint8_t* positive = positive_.data();
-    std::uint8_t* read = read_.data();
-    for (const family f : {family::brake, family::accelerate}) {
-      const displacement_set& set = samples_.set(f);
-      if (set.degenerate) continue;
-      const std::size_t first = samples_.grid(f).begin;
-      const std::size_t columns = set.curvature_count;
-      const std::size_t rows = set.acceleration_count;
-      for (std::size_t ia = 0; ia < rows; ++ia) {
-        const std::size_t row = first + ia * columns;
-        for (std::size_t m = row; m + 1 < row + columns; ++m) {
-          if (positive[m] != positive[m + 1]) read[m] = read[m + 1] = 1;
-        }
-        if (ia + 1 == rows) continue;
-        for (std::size_t m = row; m < row + columns; ++m) {
-          const std::size_t up = m + columns;
-          if (positive[m] != positive[up]) read[m] = read[up] = 1;
-          // A saddle cell: its centre value (all four corners) decides it.
-          if (m + 1 < row + columns && positive[m] != positive[m + 1] && positive[m] == positive[up + 1] &&
-              positive[m + 1] == positive[up]) {
-            read[m] = read[m + 1] = read[up] = read[up + 1] = 1;
-          }
-        }
-      }
+      });
     }
   }
 
@@ -360,9 +319,10 @@ class evaluator {
   std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
   std::vector<std::size_t> scratch_key_;
   clearance_set scratch_set_;
-  std::vector<std::uint8_t> positive_;  ///< scratch of make_read_values_exact: [m] is positive
-  std::vector<std::uint8_t> read_;      ///< scratch of make_read_values_exact: [m] needs a value
-  std::vector<std::uint8_t> valued_;    ///< scratch of make_read_values_exact: [m] has its exact value
+  sample_mask negative_;  ///< scratch of combined_parts: the samples of a sampled collision
+  sample_mask positive_;  ///< scratch of make_read_values_exact: the positive samples
+  sample_mask read_;      ///< scratch of make_read_values_exact: the samples whose values are read next
+  sample_mask valued_;    ///< scratch of make_read_values_exact: the samples with their exact value
   std::vector<std::pair<double, std::size_t>> by_floor_;  ///< the rows of `by_floor`, `by_floor_count_` entries each
   std::vector<std::size_t> by_floor_row_;                 ///< [m]: where sample m's row starts, or `absent` (empty until the first read)
   std::size_t by_floor_count_ = 0;                        ///< obstacles that are not inert

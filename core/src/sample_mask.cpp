@@ -27,4 +27,16 @@ sample_mask& sample_mask::operator|=(const sample_mask& other) {
   return *this;
 }
 
+sample_mask& sample_mask::subtract(const sample_mask& other) {
+  for (std::size_t w = 0; w < words_.size(); ++w) words_[w] &= ~other.words_[w];
+  return *this;
+}
+
+void sample_mask::assign_complement(const sample_mask& other) {
+  size_ = other.size_;
+  words_.resize(other.words_.size());
+  for (std::size_t w = 0; w < words_.size(); ++w) words_[w] = ~other.words_[w];
+  if (size_ % 64 != 0) words_.back() &= (std::uint64_t{1} << (size_ % 64)) - 1;
+}
+
 }  // namespace mm

@@ -44,6 +44,17 @@ double maneuverability_index(const displacement_set& set, std::span<const double
 /// a cell. What the fast forecast-time search ranks assignments by (docs/method.md §5).
 double sign_index(const displacement_set& set, std::span<const double> clearance);
 
+/// The samples whose values `maneuverability_index` reads beyond their signs, given which samples
+/// are positive (`positive`, over every sample of `samples`): both ends of every edge of a
+/// non-degenerate family's grid whose ends differ in sign. A cell whose corners share one sign
+/// reads none; a saddle cell's four corners are all such ends. Into `read` (resized to the samples),
+/// a grid row at a time on the mask's words (rows of up to 63 nodes; longer rows node by node).
+void read_nodes(const maneuver_samples& samples, const sample_mask& positive, sample_mask& read);
+
+/// The reference of `read_nodes`, node by node: the ends of every sign-changing grid edge and the
+/// four corners of every saddle cell.
+sample_mask read_nodes_reference(const maneuver_samples& samples, const sample_mask& positive);
+
 /// Excluded forecast times (spec §6): τ_i > TTC, except τ_0 = 0 which is never excluded.
 std::vector<std::uint8_t> excluded_forecast_times(std::span<const double> forecast_times,
                                                   double time_to_collision);

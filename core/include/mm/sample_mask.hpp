@@ -32,6 +32,28 @@ class sample_mask {
   bool all_in(std::size_t begin, std::size_t end) const;
 
   sample_mask& operator|=(const sample_mask& other);
+  /// Removes the members of `other` (of the same size).
+  sample_mask& subtract(const sample_mask& other);
+  /// Becomes the complement of `other` in [0, other.size()), keeping the memory.
+  void assign_complement(const sample_mask& other);
+  /// Members among the `count` indices from `begin` (count ≤ 64, begin + count ≤ size()): bit j is index begin + j.
+  std::uint64_t bits(std::size_t begin, std::size_t count) const {
+    if (count == 0) return 0;
+    const std::size_t w = begin / 64;
+    const std::size_t shift = begin % 64;
+    std::uint64_t value = words_[w] >> shift;
+    if (shift != 0 && shift + count > 64) value |= words_[w + 1] << (64 - shift);
+    return count == 64 ? value : value & ((std::uint64_t{1} << count) - 1);
+  }
+  /// Adds index begin + j for every bit j set in `bits` (only bits below `count`, as `bits()` reads them).
+  void add_bits(std::size_t begin, std::size_t count, std::uint64_t bits) {
+    if (count == 0) return;
+    if (count < 64) bits &= (std::uint64_t{1} << count) - 1;
+    const std::size_t w = begin / 64;
+    const std::size_t shift = begin % 64;
+    words_[w] |= bits << shift;
+    if (shift != 0 && shift + count > 64) words_[w + 1] |= bits >> (64 - shift);
+  }
   friend sample_mask operator|(sample_mask a, const sample_mask& b) { return a |= b; }
   friend bool operator==(const sample_mask&, const sample_mask&) = default;
 
