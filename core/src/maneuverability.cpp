@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
+#include <cstdint>
 
 #include "mm/geometry.hpp"
 
@@ -136,15 +138,143 @@ double positive_fraction(double c00, double c10, double c01, double c11) {
   return std::clamp(0.5 * twice_area, 0.0, 1.0);
 }
 
+namespace {
+
+/// The signs of a family's nodes as one word per grid row: bit k of `rows[ia]` is set when node
+/// (ia, k) is positive; `all_positive` tells whether every node is positive. For grids of 2 to 64
+/// rows and columns.
+struct row_signs {
+  std::array<std::uint64_t, 64> rows{};
+  bool all_positive = true;
+};
+
+/// Fills `signs` from a mask holding the nodes' signs from index `first` on, in node order; false
+/// (the grid is not one of `row_signs`) when it cannot.
+bool signs_by_row(const displacement_set& set, const sample_mask& positive, std::size_t first, row_signs& signs) {
+  const std::size_t columns = set.curvature_count;
+  const std::size_t count = set.acceleration_count;
+  if (columns < 2 || columns > 64 || count < 2 || count > 64 || positive.size() < first + count * columns) return false;
+  const std::uint64_t full = columns == 64 ? ~std::uint64_t{0} : (std::uint64_t{1} << columns) - 1;
+  for (std::size_t ia = 0; ia < count; ++ia) {
+    const std::uint64_t bits = positive.bits(first + ia * columns, columns);
+    signs.rows[ia] = bits;
+    signs.all_positive = signs.all_positive && bits == full;
+  }
+  return true;
+}
+
+/// Σ of the weights of the cells between the rows and columns of the grid, in index order.
+double total_cell_weight(const displacement_set& set) {
+  const std::size_t cells = (set.acceleration_count - 1) * (set.curvature_count - 1);
+  double total = 0.0;
+  for (std::size_t c = 0; c < cells; ++c) total += set.cell_weights[c];
+  return total;
+}
+
+/// Visits the cells of grid row ia (between node rows ia and ia + 1) that have a positive corner,
+/// in increasing ik: `whole(begin, end)` for each run [begin, end) of cells positive at every
+/// corner, `part(ik, pattern)` for each other one (pattern bit 0 is c00, bit 1 c10, bit 2 c01,
+/// bit 3 c11).
+template <class Whole, class Part>
+void for_each_positive_cell(const row_signs& signs, std::size_t ia, std::size_t columns, Whole&& whole, Part&& part) {
+  const std::uint64_t lower = signs.rows[ia];
+  const std::uint64_t upper = signs.rows[ia + 1];
+  const std::uint64_t cells = (std::uint64_t{1} << (columns - 1)) - 1;
+  const std::uint64_t every = lower & (lower >> 1) & upper & (upper >> 1) & cells;
+  std::uint64_t touched = (lower | (lower >> 1) | upper | (upper >> 1)) & cells;
+  while (touched != 0) {
+    const auto ik = static_cast<std::size_t>(std::countr_zero(touched));
+    if ((every >> ik) & 1U) {
+      const auto end = ik + static_cast<std::size_t>(std::countr_one(every >> ik));
+      whole(ik, end);
+      touched &= end >= 64 ? 0 : ~std::uint64_t{0} << end;
+    } else {
+      part(ik, static_cast<unsigned>(((lower >> ik) & 3U) | (((upper >> ik) & 3U) << 2)));
+      touched &= touched - 1;
+    }
+  }
+}
+
+/// `maneuverability_index` over the cells with a positive corner (the others add 0), from the
+/// nodes' signs by row.
+double interpolated_index(const displacement_set& set, std::span<const double> clearance, const row_signs& signs) {
+  // Safe everywhere: every cell adds its whole weight to both sums, so the index is exactly 1.
+  if (signs.all_positive) return 1.0;
+  const std::size_t columns = set.curvature_count;
+  const double total = total_cell_weight(set);
+  double safe = 0.0;
+  for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+    const double* w = set.cell_weights.data() + ia * (columns - 1);
+    for_each_positive_cell(
+        signs, ia, columns,
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t ik = begin; ik < end; ++ik) safe += w[ik];
+        },
+        [&](std::size_t ik, unsigned) {
+          const std::size_t lower = ia * columns + ik;
+          const std::size_t upper = lower + columns;
+          safe += w[ik] * positive_fraction(clearance[lower], clearance[lower + 1], clearance[upper], clearance[upper + 1]);
+        });
+  }
+  if (total <= 0.0) return 1.0;
+  return std::clamp(safe / total, 0.0, 1.0);
+}
+
+/// positive_fraction of ±1 corners, by pattern: bit 0 c00, bit 1 c10, bit 2 c01, bit 3 c11.
+const std::array<double, 16>& sign_shares() {
+  static const std::array<double, 16> share = [] {
+    std::array<double, 16> table{};
+    const auto sign = [](unsigned pattern, unsigned bit) { return (pattern >> bit) & 1U ? 1.0 : -1.0; };
+    for (unsigned p = 0; p < 16; ++p) table[p] = positive_fraction(sign(p, 0), sign(p, 1), sign(p, 2), sign(p, 3));
+    return table;
+  }();
+  return share;
+}
+
+/// `sign_index` over the cells with a positive corner, from the nodes' signs by row.
+double sign_index_of(const displacement_set& set, const row_signs& signs) {
+  if (signs.all_positive) return 1.0;
+  const std::array<double, 16>& share = sign_shares();
+  const std::size_t columns = set.curvature_count;
+  const double total = total_cell_weight(set);
+  double safe = 0.0;
+  for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+    const double* w = set.cell_weights.data() + ia * (columns - 1);
+    for_each_positive_cell(
+        signs, ia, columns,
+        [&](std::size_t begin, std::size_t end) {
+          for (std::size_t ik = begin; ik < end; ++ik) safe += w[ik];
+        },
+        [&](std::size_t ik, unsigned pattern) { safe += w[ik] * share[pattern]; });
+  }
+  if (total <= 0.0) return 1.0;
+  return std::clamp(safe / total, 0.0, 1.0);
+}
+
+}  // namespace
+
+double maneuverability_index(const displacement_set& set, std::span<const double> clearance,
+                             const sample_mask& positive, std::size_t first) {
+  row_signs signs;
+  if (!set.degenerate && signs_by_row(set, positive, first, signs)) return interpolated_index(set, clearance, signs);
+  return maneuverability_index(set, clearance);
+}
+
+double sign_index(const displacement_set& set, std::span<const double> clearance, const sample_mask& positive,
+                  std::size_t first) {
+  row_signs signs;
+  if (!set.degenerate && signs_by_row(set, positive, first, signs)) return sign_index_of(set, signs);
+  return sign_index(set, clearance);
+}
+
 double maneuverability_index(const displacement_set& set, std::span<const double> clearance) {
   if (set.degenerate) {
     std::size_t safe = 0;
     for (const double c : clearance) safe += c > 0.0 ? 1 : 0;
     return static_cast<double>(safe) / static_cast<double>(clearance.size());
   }
-  // Safe everywhere: every cell adds its whole weight to both sums, so the index is exactly 1.
-  if (std::all_of(clearance.begin(), clearance.end(), [](double c) { return c > 0.0; })) return 1.0;
   const std::size_t columns = set.curvature_count;
+  if (std::all_of(clearance.begin(), clearance.end(), [](double c) { return c > 0.0; })) return 1.0;
   double total = 0.0;
   double safe = 0.0;
   for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
@@ -183,15 +313,9 @@ double sign_index(const displacement_set& set, std::span<const double> clearance
     for (std::size_t m = 0; m < signs.size(); ++m) signs[m] = clearance[m] > 0.0 ? 1.0 : -1.0;
     return maneuverability_index(set, signs);
   }
-  // positive_fraction of ±1 corners, by pattern: bit 0 c00, bit 1 c10, bit 2 c01, bit 3 c11.
-  static const std::array<double, 16> share = [] {
-    std::array<double, 16> table{};
-    const auto sign = [](unsigned pattern, unsigned bit) { return (pattern >> bit) & 1U ? 1.0 : -1.0; };
-    for (unsigned p = 0; p < 16; ++p) table[p] = positive_fraction(sign(p, 0), sign(p, 1), sign(p, 2), sign(p, 3));
-    return table;
-  }();
-  if (std::all_of(clearance.begin(), clearance.end(), [](double c) { return c > 0.0; })) return 1.0;
+  const std::array<double, 16>& share = sign_shares();
   const std::size_t columns = set.curvature_count;
+  if (std::all_of(clearance.begin(), clearance.end(), [](double c) { return c > 0.0; })) return 1.0;
   double total = 0.0;
   double safe = 0.0;
   for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {

@@ -81,16 +81,19 @@ class evaluator {
     return r;
   }
 
-  /// MI− and MI+ (spec §6): the reference counts safe samples' areas; the fast path interpolates
-  /// (`rough`: from the signs alone, `sign_index`).
+  /// MI− and MI+ (spec §6) of `c`, the set combined last (`combined`, `column`, or the scratch
+  /// set): the reference counts safe samples' areas; the fast path interpolates (`rough`: from the
+  /// signs alone, `sign_index`), reading the signs from `positive_`, which holds those of `c`.
   maneuverability_pair indices(const clearance_set& c, bool rough = false) const {
     if (reference_) return maneuverability_indices(samples_, colliding(c));
     const index_range b = samples_.grid(family::brake);
     const index_range a = samples_.grid(family::accelerate);
-    const auto index = rough ? sign_index : static_cast<double (*)(const displacement_set&, std::span<const double>)>(
-                                                maneuverability_index);
-    return {index(samples_.brake, std::span(c).subspan(b.begin, b.size())),
-            index(samples_.accelerate, std::span(c).subspan(a.begin, a.size()))};
+    const auto index = rough ? static_cast<double (*)(const displacement_set&, std::span<const double>,
+                                                      const sample_mask&, std::size_t)>(sign_index)
+                             : static_cast<double (*)(const displacement_set&, std::span<const double>,
+                                                      const sample_mask&, std::size_t)>(maneuverability_index);
+    return {index(samples_.brake, std::span(c).subspan(b.begin, b.size()), positive_, b.begin),
+            index(samples_.accelerate, std::span(c).subspan(a.begin, a.size()), positive_, a.begin)};
   }
 
   double room(const clearance_set& c, bool rough = false) const {
@@ -223,6 +226,7 @@ class evaluator {
     }
     c.assign(samples_.size(), clearance_cap);
     negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
+    positive_.assign_complement(negative_);
     if (!rough) make_read_values_exact(parts, c);
   }
 
@@ -277,7 +281,8 @@ class evaluator {
   /// differ in sign). Elsewhere a cell reads signs only (`positive_fraction`). A sample that
   /// overlaps no obstacle at a sample time but whose exact clearance is ≤ 0 (a contact between
   /// sample times) collides: its other neighbours are read in turn, until the boundary is where the
-  /// exact values put it. `c` holds the signs of `negative_` (−cap there, +cap elsewhere).
+  /// exact values put it. `c` holds the signs of `positive_` (+cap there, −cap elsewhere), which
+  /// follows the signs of the values made exact.
   void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> all_parts, clearance_set& c) {
     // Inert obstacles are +cap everywhere: they cannot lower a minimum.
     live_parts_.clear();
@@ -288,7 +293,6 @@ class evaluator {
     forecast_of_.assign(fields_.size(), absent);
     for (const auto& [j, i] : parts) forecast_of_[j] = i;
     const std::size_t size = c.size();
-    positive_.assign_complement(negative_);
     valued_.clear(size);
     std::size_t positives = positive_.count();
     for (bool changed = true; changed;) {
@@ -320,7 +324,7 @@ class evaluator {
   std::vector<std::size_t> scratch_key_;
   clearance_set scratch_set_;
   sample_mask negative_;  ///< scratch of combined_parts: the samples of a sampled collision
-  sample_mask positive_;  ///< scratch of make_read_values_exact: the positive samples
+  sample_mask positive_;  ///< the positive samples of the set combined last (`combined_parts`)
   sample_mask read_;      ///< scratch of make_read_values_exact: the samples whose values are read next
   sample_mask valued_;    ///< scratch of make_read_values_exact: the samples with their exact value
   std::vector<std::pair<double, std::size_t>> by_floor_;  ///< the rows of `by_floor`, `by_floor_count_` entries each

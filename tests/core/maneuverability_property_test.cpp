@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "mm/maneuverability.hpp"
 #include "property.hpp"
@@ -55,6 +57,68 @@ TEST(maneuverability_properties, a_grid_of_one_sign_reads_no_node_and_one_change
   read_nodes(samples, positive, read);
   EXPECT_EQ(read.count(), 5U);
   for (const std::size_t m : {node, node - 1, node + 1, node - 7, node + 7}) EXPECT_TRUE(read.test(m)) << m;
+}
+
+/// Σ_cells W · positive_fraction(corners) / Σ_cells W, cell by cell in index order (the definition
+/// of the interpolated index, spec §6), with `fraction` for a cell's positive share.
+template <class Fraction>
+double index_cell_by_cell(const displacement_set& set, const std::vector<double>& c, Fraction&& fraction) {
+  const std::size_t columns = set.curvature_count;
+  double total = 0.0;
+  double safe = 0.0;
+  for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+    for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
+      const double w = set.cell_weights[ia * (columns - 1) + ik];
+      const std::size_t lower = ia * columns + ik;
+      total += w;
+      safe += w * fraction(c[lower], c[lower + 1], c[lower + columns], c[lower + columns + 1]);
+    }
+  }
+  return total <= 0.0 ? 1.0 : std::clamp(safe / total, 0.0, 1.0);
+}
+
+TEST(maneuverability_properties, the_indices_with_and_without_sign_bits_are_the_cell_by_cell_sums_bit_for_bit) {
+  std::mt19937_64 rng(testing::property_seed() + 32);
+  std::uniform_real_distribution<double> value(-3.0, 3.0);
+  const std::size_t count = testing::property_count(600);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    ego_state ego;
+    ego.speed = 1.0 + static_cast<double>(rng() % 200) / 10.0;
+    // Rows longer than a word now and then (the node-by-node path).
+    const sampling_resolution resolution{2 + rng() % 20, trial % 9 == 0 ? 60 + rng() % 10 : 2 + rng() % 40};
+    const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, resolution, false, false);
+    const displacement_set& set = trial % 2 == 0 ? samples.brake : samples.accelerate;
+    std::vector<double> c(set.samples.size());
+    // Noise, blobs of one sign, or safe everywhere but a few nodes.
+    const double threshold = value(rng);
+    for (std::size_t m = 0; m < c.size(); ++m) {
+      switch (trial % 3) {
+        case 0: c[m] = value(rng); break;
+        case 1: c[m] = threshold - static_cast<double>(m % 13) * 0.4; break;
+        default: c[m] = rng() % 25 == 0 ? -1.0 : 0.5 + value(rng) * value(rng); break;
+      }
+    }
+    const double interpolated = index_cell_by_cell(set, c, [](double a, double b, double d, double e) {
+      return positive_fraction(a, b, d, e);
+    });
+    const double signs = index_cell_by_cell(set, c, [](double a, double b, double d, double e) {
+      const auto unit = [](double x) { return x > 0.0 ? 1.0 : -1.0; };
+      return positive_fraction(unit(a), unit(b), unit(d), unit(e));
+    });
+    const std::string input = "seed " + std::to_string(testing::property_seed()) + ", trial " + std::to_string(trial) +
+                              ", resolution " + std::to_string(resolution.accelerations) + " x " +
+                              std::to_string(resolution.curvatures);
+    ASSERT_EQ(maneuverability_index(set, c), interpolated) << input;
+    ASSERT_EQ(sign_index(set, c), signs) << input;
+    // The same with the signs given as bits of a mask, from an offset that crosses words.
+    const std::size_t first = rng() % 100;
+    sample_mask positive(first + c.size() + rng() % 5);
+    for (std::size_t m = 0; m < c.size(); ++m) {
+      if (c[m] > 0.0) positive.set(first + m);
+    }
+    ASSERT_EQ(maneuverability_index(set, c, positive, first), interpolated) << input << ", first " << first;
+    ASSERT_EQ(sign_index(set, c, positive, first), signs) << input << ", first " << first;
+  }
 }
 
 }  // namespace

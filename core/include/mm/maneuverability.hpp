@@ -55,6 +55,18 @@ void read_nodes(const maneuver_samples& samples, const sample_mask& positive, sa
 /// four corners of every saddle cell.
 sample_mask read_nodes_reference(const maneuver_samples& samples, const sample_mask& positive);
 
+/// `maneuverability_index` with the signs of `clearance` also given as bits: `positive` holds, from
+/// index `first` on, one bit per node of `set` in node order, set where the clearance is > 0 (as the
+/// planner's sample masks do, `first` being the family's first sample). Equal bit for bit; cheaper,
+/// as the cells without a positive corner (which add nothing) are skipped by word operations.
+double maneuverability_index(const displacement_set& set, std::span<const double> clearance,
+                             const sample_mask& positive, std::size_t first);
+
+/// `sign_index` with the signs given as bits, as above (the values are read only where the grid is
+/// not one of 2 to 64 rows and columns). Equal bit for bit.
+double sign_index(const displacement_set& set, std::span<const double> clearance, const sample_mask& positive,
+                  std::size_t first);
+
 /// Excluded forecast times (spec §6): τ_i > TTC, except τ_0 = 0 which is never excluded.
 std::vector<std::uint8_t> excluded_forecast_times(std::span<const double> forecast_times,
                                                   double time_to_collision);
