@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -184,6 +185,65 @@ bool maneuver_collides(const ego_state& ego, const maneuver& u,
 }
 
 bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
+                             std::span<const double> forecast_times, const collision_window& window,
+                             double resolution) {
+  // The reference's steps, bit for bit; an obstacle whose bounding disc is so far from the ego's
+  // that neither its clearance can be ≤ 0 nor its clearance / rate below the step so far is not
+  // asked for its distance (its clearance is at least that gap, so it changes neither).
+  const double ego_radius = bounding_radius(ego.shape);
+  const double ego_rate = largest_speed(ego, u, window.horizon) * (1.0 + std::abs(u.curvature) * ego_radius);
+  constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  struct obstacle_step {
+    double rate;    ///< largest rate of the pair's signed distance [m/s]
+    double radius;  ///< bounding radius [m]
+    pose at;        ///< placement at the current time
+    double gap;     ///< lower bound of its signed distance − margin at the current time [m]
+  };
+  std::vector<obstacle_step> steps(obstacles.size());
+  for (std::size_t j = 0; j < obstacles.size(); ++j) {
+    const forecast_obstacle& o = obstacles[j];
+    steps[j].radius = bounding_radius(o.shape);
+    steps[j].rate = ego_rate + o.motion.speed + std::abs(o.motion.yaw_rate) * steps[j].radius;
+  }
+  double t = 0.0;
+  while (true) {
+    const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
+    const placed_footprint e = place(ego.shape, ego_pose);
+    double step = window.duration - t;
+    // The obstacle that most likely sets the step first: the smallest gap / rate.
+    std::size_t first = none;
+    double first_ratio = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < obstacles.size(); ++j) {
+      obstacle_step& s = steps[j];
+      s.at = forecast_pose(obstacles[j].motion, forecast_times[j], t);
+      const double centres = norm(s.at.position - ego_pose.position);
+      const double reach = ego_radius + s.radius + window.margin;
+      s.gap = centres - reach - (1e-9 + 1e-12 * (centres + reach));
+      const double ratio = s.gap <= 0.0 ? -std::numeric_limits<double>::infinity() : s.rate > 0.0 ? s.gap / s.rate : std::numeric_limits<double>::infinity();
+      if (first == none || ratio < first_ratio) {
+        first = j;
+        first_ratio = ratio;
+      }
+    }
+    const auto visit = [&](std::size_t j) {
+      const obstacle_step& s = steps[j];
+      if (s.gap > 0.0 && (s.rate <= 0.0 || s.gap / s.rate >= step)) return true;
+      const double clearance = signed_distance(e, place(obstacles[j].shape, s.at)) - window.margin;
+      if (clearance <= 0.0) return false;
+      if (s.rate > 0.0) step = std::min(step, clearance / s.rate);
+      return true;
+    };
+    if (first != none && !visit(first)) return false;
+    for (std::size_t j = 0; j < obstacles.size(); ++j) {
+      if (j != first && !visit(j)) return false;
+    }
+    if (t >= window.duration) return true;
+    if (step < resolution) return false;
+    t = std::min(window.duration, t + step);
+  }
+}
+
+bool verified_collision_free_reference(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
                              std::span<const double> forecast_times, const collision_window& window,
                              double resolution) {
   // Largest speed of the ego's reference point along u, and of any of its footprint points.

@@ -1430,7 +1430,8 @@ std::vector<sample_mask> collision_sets_reference(const ego_state& ego, const ma
     sample_mask set(samples.size());
     const std::array<double, 1> taus{tau};
     for (std::size_t m = 0; m < samples.size(); ++m) {
-      if (!verified_collision_free(ego, samples.maneuvers[m], std::span(&obstacle, 1), taus, window, proof_resolution)) {
+      if (!verified_collision_free_reference(ego, samples.maneuvers[m], std::span(&obstacle, 1), taus, window,
+                                             proof_resolution)) {
         set.set(m);
       }
     }

@@ -606,7 +606,9 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // Safe means collision-free in continuous time, not only at the sample times: a minimal-effort
   // choice lies at the edge of the safe set, where a corner can clip between samples.
   choice.verify = [&](const maneuver& u) {
-    return verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
+    return options.reference
+               ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
+               : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
   };
   choice.nominal_safe = choice.verify(nominal);
   choice.initial_speed = ego.speed;

@@ -1,4 +1,5 @@
-// The time to collision that skips provably free sample times, against its reference (spec §11).
+// The time to collision that skips provably free sample times, the first collision times and the
+// continuous-time proof, against their references (spec §11).
 #include "mm/collision.hpp"
 
 #include <gtest/gtest.h>
@@ -70,6 +71,41 @@ TEST(collision, first_collision_time_equals_its_reference_bit_for_bit_on_random_
     }
   }
   EXPECT_GT(collisions, count) << "the random maneuvers must collide often for this test to mean anything";
+}
+
+TEST(collision, verified_collision_free_equals_its_reference_on_random_scenes) {
+  // Every obstacle of a random scene at once, each with its own forecast time; random maneuvers,
+  // margins and proof resolutions, so that proofs succeed, fail on a contact and fail on a short step.
+  std::mt19937_64 rng(testing::property_seed() + 37);
+  const std::size_t count = testing::property_count(200);
+  std::uniform_real_distribution<double> acceleration(-7.0, 3.0);
+  std::uniform_real_distribution<double> curvature(-0.15, 0.15);
+  std::uniform_int_distribution<int> forecast(0, 16);
+  std::size_t proven = 0;
+  std::size_t refused = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = testing::random_scene(rng, {1 + trial % 4, trial % 2 == 1});
+    const collision_window window{in.config.displacement_horizon, in.config.collision_window, 0.05,
+                                  trial % 3 == 1 ? 0.4 : 0.0};
+    const double resolution = trial % 4 == 0 ? 0.02 : 1e-3;
+    std::vector<forecast_obstacle> obstacles;
+    std::vector<double> taus;
+    for (const obstacle_track& track : in.obstacles) {
+      obstacles.push_back({estimate_motion(track, in.config.history_window, in.time), track.shape});
+      taus.push_back(0.125 * forecast(rng));
+    }
+    for (int m = 0; m < 8; ++m) {
+      const maneuver u{m % 3 == 0 ? 0.0 : acceleration(rng), m % 4 == 0 ? 0.0 : curvature(rng)};
+      const bool reference = verified_collision_free_reference(in.ego, u, obstacles, taus, window, resolution);
+      ASSERT_EQ(verified_collision_free(in.ego, u, obstacles, taus, window, resolution), reference)
+          << "seed " << testing::property_seed() << ", trial " << trial << ", maneuver (" << u.acceleration << ", "
+          << u.curvature << "), resolution " << resolution << "\n"
+          << testing::describe(in);
+      (reference ? proven : refused) += 1;
+    }
+  }
+  EXPECT_GT(proven, count) << "the random maneuvers must often be proven free for this test to mean anything";
+  EXPECT_GT(refused, count) << "and often not";
 }
 
 }  // namespace

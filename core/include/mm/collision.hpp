@@ -179,9 +179,19 @@ double refined_minimum(std::span<const double> times, std::size_t k, At&& at, do
 /// relative speed of any two footprint points, so from a clearance c > 0 at time t no contact is
 /// possible before t + c/L. Stepping so across the window proves it; a step shorter than
 /// `resolution` [s] (a clearance below L·resolution) counts as not proven.
+///
+/// Obstacles whose bounding discs are so far apart from the ego's that their clearance can neither
+/// be ≤ 0 nor shorten the step are not asked for their distance: equal to
+/// `verified_collision_free_reference`, which asks every obstacle at every step.
 bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
                              std::span<const double> forecast_times, const collision_window& window,
                              double resolution = 1e-3);
+
+/// The reference for `verified_collision_free`: the signed distance of every obstacle at every step.
+bool verified_collision_free_reference(const ego_state& ego, const maneuver& u,
+                                       std::span<const forecast_obstacle> obstacles,
+                                       std::span<const double> forecast_times, const collision_window& window,
+                                       double resolution = 1e-3);
 
 /// Time to collision [s] (spec §6): first time the ego holding `nominal` (its §5 trajectory)
 /// overlaps `obstacle` following its CTRV forecast for the whole window; `no_collision` if none
