@@ -1,5 +1,6 @@
 #include <charconv>
 #include <cmath>
+#include <span>
 #include <string>
 #include <type_traits>
 
@@ -59,6 +60,18 @@ struct checker {
     if (auto why = footprint_error(f)) error = text(field) + ": " + *why;
   }
 };
+
+/// True when every observation of `history` is finite and later than the one before: what the
+/// observation checks of `validation_error` accept, in one pass that builds no message.
+bool history_valid(std::span<const observation> history) {
+  for (std::size_t i = 0; i < history.size(); ++i) {
+    const observation& o = history[i];
+    const bool finite = std::isfinite(o.time) && std::isfinite(o.pose.position.x) &&
+                        std::isfinite(o.pose.position.y) && std::isfinite(o.pose.heading) && std::isfinite(o.speed);
+    if (!finite || (i > 0 && !(o.time > history[i - 1].time))) return false;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -126,7 +139,9 @@ std::optional<std::string> validation_error(const plan_input& in) {
     c.require(o.history.size() >= needed, [&] { return field() + ".history size"; }, static_cast<double>(o.history.size()),
               needed == 1 ? "at least 1 observation"
                           : "at least 2 observations (speed and yaw rate are estimated from the history)");
-    for (std::size_t i = 0; i < o.history.size() && !c.error; ++i) {
+    // The messages of the observations only for a history that has something wrong.
+    const bool history_ok = history_valid(o.history);
+    for (std::size_t i = 0; i < o.history.size() && !c.error && !history_ok; ++i) {
       const observation& obs = o.history[i];
       const auto at = [&] { return field() + ".history[" + std::to_string(i) + "]"; };
       c.finite([&] { return at() + ".time"; }, obs.time);

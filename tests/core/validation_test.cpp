@@ -91,6 +91,15 @@ TEST(validation, a_history_too_short_or_out_of_order_is_rejected) {
                   "finite");
   expect_rejected([](plan_input& in) { in.time = 1.0; }, "obstacles[0] (id 5).history.back().time",
                   "no later than the planning time");
+  // Every number of an observation, anywhere in the history, is named when it is not finite.
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[0].time = -inf; }, "obstacles[0] (id 5).history[0].time",
+                  "finite");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[7].pose.position.x = inf; },
+                  "obstacles[0] (id 5).history[7].pose.position.x", "finite");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[12].pose.position.y = nan; },
+                  "obstacles[0] (id 5).history[12].pose.position.y", "finite");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history.back().pose.heading = nan; },
+                  "obstacles[0] (id 5).history[50].pose.heading", "finite");
   // A static obstacle needs one observation only.
   plan_input in = valid_input();
   in.obstacles[0].kind = obstacle_kind::static_obstacle;
