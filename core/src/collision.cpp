@@ -69,10 +69,26 @@ double largest_speed(const ego_state& ego, const maneuver& u, double horizon) {
   return std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
 }
 
+namespace {
+
+/// The times of `sample_times(duration, step)` without the list: how many, and the k-th [s].
+struct sample_grid {
+  std::size_t count;
+  double duration;
+  double step;
+  double at(std::size_t k) const { return std::min(duration, static_cast<double>(k) * step); }
+};
+
+sample_grid sample_grid_of(double duration, double step) {
+  return {static_cast<std::size_t>(std::ceil(duration / step - 1e-9)) + 1, duration, step};
+}
+
+}  // namespace
+
 std::vector<double> sample_times(double duration, double step) {
-  const auto steps = static_cast<std::size_t>(std::ceil(duration / step - 1e-9));
-  std::vector<double> times(steps + 1);
-  for (std::size_t k = 0; k <= steps; ++k) times[k] = std::min(duration, static_cast<double>(k) * step);
+  const sample_grid grid = sample_grid_of(duration, step);
+  std::vector<double> times(grid.count);
+  for (std::size_t k = 0; k < grid.count; ++k) times[k] = grid.at(k);
   return times;
 }
 
@@ -270,19 +286,19 @@ bool verified_collision_free_reference(const ego_state& ego, const maneuver& u, 
 
 double time_to_collision(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
                          const collision_window& window) {
-  const std::vector<double> times = sample_times(window.duration, window.time_step);
+  const sample_grid times = sample_grid_of(window.duration, window.time_step);
   const double reach = bounding_radius(ego.shape) + bounding_radius(obstacle.shape) + window.margin;
   // The reference points' distance changes no faster than the sum of their largest speeds, so from
   // a time at which the bounding discs are apart by `gap` none can overlap for gap / rate.
   const double rate = largest_speed(ego, nominal, window.horizon) + std::abs(obstacle.motion.speed);
-  for (std::size_t k = 0; k < times.size();) {
-    const double t = times[k];
+  for (std::size_t k = 0; k < times.count;) {
+    const double t = times.at(k);
     const overlap_check at = check_overlap(ego, nominal, obstacle, window.duration, t, window);
     if (at.overlaps) {
       if (t == 0.0) return 0.0;
-      return bisected_collision(ego, nominal, obstacle, window, times[k - 1], t);
+      return bisected_collision(ego, nominal, obstacle, window, times.at(k - 1), t);
     }
-    k += times_apart(at.squared_distance, reach, rate, times.size(), window) + 1;
+    k += times_apart(at.squared_distance, reach, rate, times.count, window) + 1;
   }
   return no_collision;
 }

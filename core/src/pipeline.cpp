@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <deque>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -52,6 +51,8 @@ class evaluator {
   void add_reference(std::vector<clearance_set> sets) { reference_sets_.push_back(std::move(sets)); }
   /// Fast path: the clearance field of the next obstacle, computing the forecast times `wanted`
   /// (empty: every one).
+  /// Room for the fields of `count` obstacles, so that adding them moves none.
+  void reserve_fields(std::size_t count) { fields_.reserve(count); }
   void add_field(const ego_sweep& sweep, const forecast_obstacle& obstacle, std::span<const double> taus,
                  std::span<const std::uint8_t> wanted, clearance_field::raster_scratch& scratch) {
     fields_.emplace_back(sweep, obstacle, taus, clearance_cap, wanted, scratch);
@@ -121,7 +122,8 @@ class evaluator {
   /// The combined set of every obstacle at forecast index i (a column of the map) into `c`, and its
   /// indices; its room is remembered for `room_of`.
   maneuverability_pair column(std::size_t i, clearance_set& c) {
-    const std::vector<std::size_t> same(reference_ ? reference_sets_.size() : fields_.size(), i);
+    std::vector<std::size_t>& same = scratch_column_index_;
+    same.assign(reference_ ? reference_sets_.size() : fields_.size(), i);
     combine_into(same, c);
     const maneuverability_pair mi = indices(c);
     column_rooms_.emplace(room_key(same, false), std::max(mi.brake, mi.accelerate));
@@ -315,13 +317,14 @@ class evaluator {
   const maneuver_samples& samples_;
   bool reference_;
   std::vector<std::vector<clearance_set>> reference_sets_;
-  std::deque<clearance_field> fields_;
+  std::vector<clearance_field> fields_;  ///< reserved for every obstacle first (`reserve_fields`): never moved
   std::map<std::vector<std::size_t>, double> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
   std::map<std::array<std::size_t, 3>, double> rooms_alone_;  ///< `room_alone`, keyed by (j, i, rough)
   std::map<std::vector<std::size_t>, double> column_rooms_;  ///< the rooms of the map's column, keyed as `rooms_`
   static constexpr std::size_t rough_key = std::numeric_limits<std::size_t>::max();
   std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
   std::vector<std::size_t> scratch_key_;
+  std::vector<std::size_t> scratch_column_index_;
   clearance_set scratch_set_;
   sample_mask negative_;  ///< scratch of combined_parts: the samples of a sampled collision
   sample_mask positive_;  ///< the positive samples of the set combined last (`combined_parts`)
@@ -447,6 +450,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   assignment_problem problem;
   for (std::size_t j = 0; j < n; ++j) {
     std::vector<std::size_t> allowed;
+    allowed.reserve(tau_count);
     for (std::size_t i = 0; i < tau_count; ++i) {
       if (i == 0 || taus[i] <= ttc[j]) allowed.push_back(i);
     }
@@ -491,6 +495,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       sweep = &cache->sweep.emplace(ego, samples, window);
     }
   }
+  if (!options.reference) evaluate.reserve_fields(n);
   for (std::size_t j = 0; j < n; ++j) {
     if (options.reference) {
       std::vector<clearance_set> sets;
