@@ -223,23 +223,30 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
   straight_reach_ = {travelled_distance(ego.speed, ego.limits.max_acceleration, horizon, cap) * (1.0 + 1e-12) + 1e-9,
                      largest_speed_ * (1.0 + 1e-12)};
   // The nominal-curvature columns' blocks, after the grids' (which depend only on what `restart`
-  // requires to be unchanged, and the grids' values).
-  blocks_.resize(grid_blocks_);
-  ranges_.resize(grid_blocks_);
-  order_.resize(grid_order_);
-  roots_.resize(grid_roots_);
-  grid_view nominal;
-  for (const family f : {family::brake, family::accelerate}) {
-    const index_range r = samples_.nominal_column(f);
-    for (std::size_t m = r.begin; m < r.end; ++m) {
-      nominal.row_start.push_back(m);
-      nominal.accelerations.push_back(samples_.maneuvers[m].acceleration);
+  // requires to be unchanged, and the grids' values). Their shape and accelerations are the
+  // families' acceleration nodes, which a restart keeps (`restart`): it takes only their one
+  // curvature anew (a single column: no curvature spread, the largest |κ| is |κ_nom|).
+  if (kind != start_kind::fresh && blocks_.size() > grid_blocks_) {
+    const double curvature = std::abs(samples_.nominal_curvature);
+    for (std::size_t b = grid_blocks_; b < blocks_.size(); ++b) blocks_[b].largest_curvature = curvature;
+  } else {
+    blocks_.resize(grid_blocks_);
+    ranges_.resize(grid_blocks_);
+    order_.resize(grid_order_);
+    roots_.resize(grid_roots_);
+    grid_view nominal;
+    for (const family f : {family::brake, family::accelerate}) {
+      const index_range r = samples_.nominal_column(f);
+      for (std::size_t m = r.begin; m < r.end; ++m) {
+        nominal.row_start.push_back(m);
+        nominal.accelerations.push_back(samples_.maneuvers[m].acceleration);
+      }
     }
-  }
-  if (!nominal.row_start.empty()) {
-    nominal.curvatures = {samples_.nominal_curvature};
-    nominal.ascending = std::is_sorted(nominal.accelerations.begin(), nominal.accelerations.end());
-    roots_.push_back(add_block(nominal, grids_.size(), 0, nominal.row_start.size(), 0, 1));
+    if (!nominal.row_start.empty()) {
+      nominal.curvatures = {samples_.nominal_curvature};
+      nominal.ascending = std::is_sorted(nominal.accelerations.begin(), nominal.accelerations.end());
+      roots_.push_back(add_block(nominal, grids_.size(), 0, nominal.row_start.size(), 0, 1));
+    }
   }
   stale_extents_.resize(blocks_.size(), 0);
   straight_spread_.resize(blocks_.size());
