@@ -260,11 +260,13 @@ double maneuverability_index(const displacement_set& set, std::span<const double
   return maneuverability_index(set, clearance);
 }
 
-double sign_index(const displacement_set& set, std::span<const double> clearance, const sample_mask& positive,
-                  std::size_t first) {
+double sign_index(const displacement_set& set, const sample_mask& positive, std::size_t first) {
   row_signs signs;
   if (!set.degenerate && signs_by_row(set, positive, first, signs)) return sign_index_of(set, signs);
-  return sign_index(set, clearance);
+  // The node-by-node estimator, which reads only the signs: ±1 values.
+  std::vector<double> unit(set.samples.size());
+  for (std::size_t m = 0; m < unit.size(); ++m) unit[m] = positive.test(first + m) ? 1.0 : -1.0;
+  return sign_index(set, unit);
 }
 
 double maneuverability_index(const displacement_set& set, std::span<const double> clearance) {

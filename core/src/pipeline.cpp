@@ -83,18 +83,16 @@ class evaluator {
   }
 
   /// MI− and MI+ (spec §6) of `c`, the set combined last (`combined`, `column`, or the scratch
-  /// set): the reference counts safe samples' areas; the fast path interpolates (`rough`: from the
-  /// signs alone, `sign_index`), reading the signs from `positive_`, which holds those of `c`.
+  /// set): the reference counts safe samples' areas; the fast path interpolates, reading the signs
+  /// from `positive_`, which holds those of `c` — or, `rough`, from those signs alone (`sign_index`;
+  /// `c` is then not read, nor written by a rough `combined_parts`).
   maneuverability_pair indices(const clearance_set& c, bool rough = false) const {
     if (reference_) return maneuverability_indices(samples_, colliding(c));
     const index_range b = samples_.grid(family::brake);
     const index_range a = samples_.grid(family::accelerate);
-    const auto index = rough ? static_cast<double (*)(const displacement_set&, std::span<const double>,
-                                                      const sample_mask&, std::size_t)>(sign_index)
-                             : static_cast<double (*)(const displacement_set&, std::span<const double>,
-                                                      const sample_mask&, std::size_t)>(maneuverability_index);
-    return {index(samples_.brake, std::span(c).subspan(b.begin, b.size()), positive_, b.begin),
-            index(samples_.accelerate, std::span(c).subspan(a.begin, a.size()), positive_, a.begin)};
+    if (rough) return {sign_index(samples_.brake, positive_, b.begin), sign_index(samples_.accelerate, positive_, a.begin)};
+    return {maneuverability_index(samples_.brake, std::span(c).subspan(b.begin, b.size()), positive_, b.begin),
+            maneuverability_index(samples_.accelerate, std::span(c).subspan(a.begin, a.size()), positive_, a.begin)};
   }
 
   double room(const clearance_set& c, bool rough = false) const {
@@ -210,7 +208,7 @@ class evaluator {
   }
 
   /// The sample-wise minimum over `parts` (obstacle, forecast index), into `c`; `rough` (fast path):
-  /// the ±cap of the sampled collisions only, no values.
+  /// the signs of the sampled collisions only, into `positive_` (`c` is left as it was).
   void combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c,
                       bool rough = false) {
     if (reference_) {
@@ -226,10 +224,11 @@ class evaluator {
     for (const auto& [j, i] : parts) {
       if (!fields_[j].inert()) negative_ |= fields_[j].collisions(i);
     }
+    positive_.assign_complement(negative_);
+    if (rough) return;  // the signs are all a rough room reads
     c.assign(samples_.size(), clearance_cap);
     negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
-    positive_.assign_complement(negative_);
-    if (!rough) make_read_values_exact(parts, c);
+    make_read_values_exact(parts, c);
   }
 
   /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap), obstacle

@@ -117,7 +117,33 @@ TEST(maneuverability_properties, the_indices_with_and_without_sign_bits_are_the_
       if (c[m] > 0.0) positive.set(first + m);
     }
     ASSERT_EQ(maneuverability_index(set, c, positive, first), interpolated) << input << ", first " << first;
-    ASSERT_EQ(sign_index(set, c, positive, first), signs) << input << ", first " << first;
+    ASSERT_EQ(sign_index(set, positive, first), signs) << input << ", first " << first;
+  }
+}
+
+TEST(maneuverability_properties, the_indices_with_sign_bits_equal_the_node_by_node_ones_on_degenerate_and_one_column_sets) {
+  std::mt19937_64 rng(testing::property_seed() + 33);
+  std::uniform_real_distribution<double> value(-3.0, 3.0);
+  for (std::size_t trial = 0; trial < testing::property_count(300); ++trial) {
+    ego_state ego;
+    ego.speed = trial % 2 == 0 ? 0.0 : 1.0 + static_cast<double>(rng() % 100) / 10.0;  // stopped: [AS−] degenerate
+    const sampling_resolution resolution{2 + rng() % 15, trial % 4 < 2 ? 1 : 2 + rng() % 20};
+    const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, resolution, false, false);
+    for (const family f : {family::brake, family::accelerate}) {
+      const displacement_set& set = samples.set(f);
+      std::vector<double> c(set.samples.size());
+      for (double& x : c) x = value(rng);
+      const std::size_t first = samples.grid(f).begin;
+      sample_mask positive(samples.size());
+      for (std::size_t m = 0; m < c.size(); ++m) {
+        if (c[m] > 0.0) positive.set(first + m);
+      }
+      const std::string input = "seed " + std::to_string(testing::property_seed()) + ", trial " + std::to_string(trial) +
+                                (set.degenerate ? ", degenerate" : "") + ", resolution " +
+                                std::to_string(resolution.accelerations) + " x " + std::to_string(resolution.curvatures);
+      ASSERT_EQ(maneuverability_index(set, c, positive, first), maneuverability_index(set, c)) << input;
+      ASSERT_EQ(sign_index(set, positive, first), sign_index(set, c)) << input;
+    }
   }
 }
 

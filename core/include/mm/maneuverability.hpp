@@ -62,10 +62,9 @@ sample_mask read_nodes_reference(const maneuver_samples& samples, const sample_m
 double maneuverability_index(const displacement_set& set, std::span<const double> clearance,
                              const sample_mask& positive, std::size_t first);
 
-/// `sign_index` with the signs given as bits, as above (the values are read only where the grid is
-/// not one of 2 to 64 rows and columns). Equal bit for bit.
-double sign_index(const displacement_set& set, std::span<const double> clearance, const sample_mask& positive,
-                  std::size_t first);
+/// `sign_index` from the signs alone, given as bits as above: equal bit for bit to `sign_index` of
+/// any clearances with these signs.
+double sign_index(const displacement_set& set, const sample_mask& positive, std::size_t first);
 
 /// Excluded forecast times (spec §6): τ_i > TTC, except τ_0 = 0 which is never excluded.
 std::vector<std::uint8_t> excluded_forecast_times(std::span<const double> forecast_times,
