@@ -1,6 +1,6 @@
 # The allocator the executables that run whole simulations link (maneuvermap, maneuvermap_bench):
 # gperftools' thread-caching malloc by default, whose per-thread caches serve the planner's small,
-# short-lived buffers without locks (docs/performance.md, "The allocator"); or the system's. The
+# short-lived buffers (docs/performance.md, "What changed in the fifteenth round"); or the system's. The
 # libraries link none: a program that calls the planner keeps its own. Under sanitizers, which
 # replace malloc themselves, always the system's.
 set(MM_ALLOCATOR "tcmalloc" CACHE STRING "Allocator of the maneuvermap and maneuvermap_bench executables: tcmalloc or system")

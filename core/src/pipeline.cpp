@@ -90,7 +90,9 @@ class evaluator {
     if (reference_) return maneuverability_indices(samples_, colliding(c));
     const index_range b = samples_.grid(family::brake);
     const index_range a = samples_.grid(family::accelerate);
-    if (rough) return {sign_index(samples_.brake, positive_, b.begin), sign_index(samples_.accelerate, positive_, a.begin)};
+    if (rough) {
+      return {sign_index(samples_.brake, positive_, b.begin), sign_index(samples_.accelerate, positive_, a.begin)};
+    }
     return {maneuverability_index(samples_.brake, std::span(c).subspan(b.begin, b.size()), positive_, b.begin),
             maneuverability_index(samples_.accelerate, std::span(c).subspan(a.begin, a.size()), positive_, a.begin)};
   }
