@@ -632,6 +632,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius + rounding_slack;
   centre_rate_ = sweep.largest_speed() + motion.speed;
   centre_steps_ = closing_at(centre_rate_, step).steps_per_metre;
+  horizon_index_ = first_at_or_after(times, window.horizon);
   distance_steps_ = closing_at(distance_rate_, step).steps_per_metre;
   if (const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape)) {
     ego_half_ = {ego_shape->length / 2.0, ego_shape->width / 2.0};
@@ -1314,7 +1315,7 @@ double clearance_field::floor_of_all(std::size_t m) {
   // at or above it, less θ, rounds to at least S).
   double target = std::numeric_limits<double>::infinity();
   if (straight) {
-    walked = std::min(first_at_or_after(times, window.horizon) + 1, times.size());
+    walked = std::min(horizon_index_ + 1, times.size());
     // On [T_h, T_c] the reference points' offset is d(t) = d(T_h) + w (t − T_h): its smallest
     // length is at the clamped vertex, in continuous time (so no θ), less a rounding slack.
     ++work_.bound_checks;

@@ -541,6 +541,7 @@ class clearance_field {
   std::vector<std::uint8_t> wanted_;  ///< [i]: the set of forecast time i is computed (empty: every one)
   double cap_;
   double walk_cap_;
+  std::size_t horizon_index_ = 0;  ///< first sample time index at or after T_h
   double reach_;          ///< bounding radii of ego and obstacle, and the rounding slack [m]
   double centre_rate_;    ///< Lipschitz constant of the reference points' distance [m/s]
   double distance_rate_;  ///< L: Lipschitz constant of the signed distance [m/s]
