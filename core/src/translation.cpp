@@ -158,26 +158,25 @@ face_separations::face_separations(const placed_rectangle& a, vec2 centre, doubl
 bool face_separations::reach(const widening& level) const {
   // |p + q s| − h ≤ L₀ + L₁ s on both sides: (q − L₁) s ≤ h + L₀ − p and (−q − L₁) s ≤ h + L₀ + p,
   // each a half-line of times; they meet within [0, duration] or not.
-  // The times left form [lo, hi]; lo only rises and hi only falls, so once it is empty the answer
-  // is known and the remaining half-lines (and their divisions) are skipped.
   double lo = 0.0;
   double hi = duration_;
-  const auto bound = [&](double alpha, double beta) {  // α s ≤ β; false when no time is left
+  bool empty = false;
+  const auto bound = [&](double alpha, double beta) {  // α s ≤ β
     if (alpha > 0.0) {
       hi = std::min(hi, beta / alpha);
     } else if (alpha < 0.0) {
       lo = std::max(lo, beta / alpha);
     } else if (beta < 0.0) {
-      return false;
+      empty = true;
     }
-    return lo <= hi;
   };
   for (std::size_t n = 0; n < count_; ++n) {
     const slab& f = slabs_[n];
     const double room = f.half_extent + level.base;
-    if (!bound(f.rate - level.rate, room - f.offset) || !bound(-f.rate - level.rate, room + f.offset)) return false;
+    bound(f.rate - level.rate, room - f.offset);
+    bound(-f.rate - level.rate, room + f.offset);
   }
-  return lo <= hi;
+  return !empty && lo <= hi;
 }
 
 double face_separations::at(double s) const {
@@ -209,7 +208,6 @@ bool face_separations::reach(double level) const {
     const double second = (room - f.offset) * inverse_rates_[n];
     lo = std::max(lo, std::min(first, second));
     hi = std::min(hi, std::max(first, second));
-    if (!(lo <= hi)) return false;  // it stays empty
   }
   return lo <= hi;
 }
