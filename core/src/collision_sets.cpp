@@ -632,8 +632,8 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius + rounding_slack;
   centre_rate_ = sweep.largest_speed() + motion.speed;
   centre_steps_ = closing_at(centre_rate_, step).steps_per_metre;
-  horizon_index_ = first_at_or_after(times, window.horizon);
   distance_steps_ = closing_at(distance_rate_, step).steps_per_metre;
+  horizon_index_ = first_at_or_after(times, window.horizon);
   if (const auto* ego_shape = std::get_if<rectangle>(&sweep.ego().shape)) {
     ego_half_ = {ego_shape->length / 2.0, ego_shape->width / 2.0};
     if (const auto* r = std::get_if<rectangle>(&obstacle.shape)) {
