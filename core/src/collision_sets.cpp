@@ -180,7 +180,10 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
   time_count_ = times_.size();
   const std::size_t placements = times_.size() * sample_count_;
   if (same_times) {
-    std::fill(local_known_.begin() + static_cast<std::ptrdiff_t>(placement_index(0, kept)), local_known_.end(), 0);
+    for (std::size_t k = 0; k < times_.size(); ++k) {
+      std::fill(local_known_.begin() + static_cast<std::ptrdiff_t>(placement_index(k, kept)),
+                local_known_.begin() + static_cast<std::ptrdiff_t>(placement_index(k, 0) + sample_count_), 0);
+    }
   } else {
     if (local_known_.size() != placements || local_generation_ == std::numeric_limits<std::uint8_t>::max()) {
       local_known_.assign(placements, 0);
@@ -725,10 +728,14 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
         shared.postpone(shared_done);
         continue;
       }
+      shared.end = shared_until;
       raster(shared_done, turning_[shared_done], shared);
     }
     if (shared_until < part_first_[i]) {
       own = shared;
+      own.shared = false;
+      own.slot = i;
+      own.end = part_first_[i];
       for (std::size_t k = shared_until; k < part_first_[i]; ++k) {
         const obstacle_at o = obstacle_pose(i, k);
         if (out_of_reach(k, o)) {
@@ -915,11 +922,46 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     state.wait(until(low - spread, false), index);
   } else if (high + spread + rounding_slack <= 0.0) {
     mark_all();
+  } else if (state.hit_at.empty() && overlaps_whole_ahead(b, k, state)) {
+    // Overlapping everywhere a little later: hit (when the first overlap is not recorded).
+    mark_all();
   } else {
     // Undecided as a whole: its halves wait on their own from now on.
     raster_block(index + 1, k, o, state);
     raster_block(b.second, k, o, state);
   }
+}
+
+bool clearance_field::overlaps_whole_ahead(const ego_sweep::block& b, std::size_t k, const raster_state& state) {
+  const double margin = sweep_.window().margin;
+  const std::size_t last = std::min(k + 1 + lookahead_steps, state.end);
+  for (std::size_t later = k + 1; later < last; ++later) {
+    const obstacle_at o = state.shared ? turning_[later] : obstacle_pose(state.slot, later);
+    const ego_sweep::placement p = sweep_.at(later, b.centre);
+    ++work_.bound_checks;
+    double high = 0.0;
+    const double spread = sweep_.block_spread(b, later);
+    if (shapes_ == shape_pair::rectangles) {
+      // The face separation is the signed distance when ≤ 0 and a lower bound of it otherwise: the
+      // corners' distance only where the margin can still make the whole block overlap.
+      const placed_rectangle ego{p.position, p.direction, ego_half_.x, ego_half_.y};
+      const placed_rectangle obstacle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
+      const double face = face_separation(ego, obstacle);
+      if (face <= 0.0) {
+        high = face - margin;
+      } else if (face + spread + rounding_slack <= margin) {
+        ++work_.distance_evaluations;
+        high = corner_distance(ego, obstacle) - margin;
+      } else {
+        continue;
+      }
+    } else {
+      ++work_.distance_evaluations;
+      high = distance(p.position, p.direction, o) - margin;
+    }
+    if (high + spread + rounding_slack <= 0.0) return true;
+  }
+  return false;
 }
 
 void clearance_field::raster_straight_part(std::size_t i, raster_state& state) {

@@ -201,10 +201,10 @@ class ego_sweep {
     return {ego_.pose.position + rotated(local.position, start_rotation_.x, start_rotation_.y),
             rotated(local.direction, start_rotation_.x, start_rotation_.y)};
   }
-  /// Where the placement of sample m at time index k is cached: sample by sample, so that the
-  /// walks of one sample over the window (exact values, floors) and a block's centre looked at on
-  /// consecutive times read neighbouring memory.
-  std::size_t placement_index(std::size_t k, std::size_t m) const { return m * time_count_ + k; }
+  /// Where the placement of sample m at time index k is cached: time by time, so that the
+  /// rasters, which look at many samples at one time, read neighbouring memory (a sample's walk over
+  /// the window strides by a constant step, which the processor's prefetcher follows).
+  std::size_t placement_index(std::size_t k, std::size_t m) const { return k * sample_count_ + m; }
   /// How a start relates to the previous one: none; the same speed, so the grids' samples and their
   /// speeds are the previous start's (only the nominal-curvature columns' are computed again); or a
   /// new speed, whose grids were sampled again with the same shape.
@@ -461,6 +461,12 @@ class clearance_field {
     std::vector<std::uint32_t> head;  ///< [k]: first block waiting for time index k
     std::vector<std::uint32_t> link;  ///< [block]: the next in the same list (read only for blocks in a list)
     std::vector<double> hit_at;  ///< [position in tree order]: time of the first overlap [s] (read only where hit; empty when not recorded)
+    /// The obstacle's placements the state is rastered with, at the time indices before `end`: the
+    /// CTRV ones shared by every τ (`turning_`) when `shared`, else those of forecast time `slot`.
+    /// What a block may be tested at ahead of time (`overlaps_whole_ahead`).
+    bool shared = true;
+    std::size_t slot = 0;
+    std::size_t end = 0;
     /// No sample hit, every list empty, for `samples` samples, `times` time indices and `blocks`
     /// blocks, recording when samples are hit if `record`; keeps the buffers' memory (`link` and
     /// `hit_at` are written before they are read, so not cleared).
@@ -485,6 +491,14 @@ class clearance_field {
   void raster(std::size_t k, const obstacle_at& o, raster_state& state);
   /// `raster` of block `index` (and its halves when it is undecided as a whole).
   void raster_block(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state);
+  /// True when every sample of block b overlaps the obstacle at one of the next `lookahead_steps`
+  /// time indices after k that `state` is rastered with (before its `end`): the centre's clearance
+  /// is below minus the block's spread there. A block that a time index leaves undecided is often
+  /// inside the obstacle a step later (it moves up to a metre a step), where one test decides it.
+  bool overlaps_whole_ahead(const ego_sweep::block& b, std::size_t k, const raster_state& state);
+  /// Time indices a block undecided at one sample time is tried at ahead (`overlaps_whole_ahead`):
+  /// 2 and 3 took the fewest instructions on the one-obstacle benchmark step (docs/performance.md).
+  static constexpr std::size_t lookahead_steps = 2;
   /// Marks in `state` every sample not marked yet that overlaps the obstacle forecast with forecast
   /// time i at some time of the straight part (the closed form, block by block from the roots).
   void raster_straight_part(std::size_t i, raster_state& state);
