@@ -4,6 +4,10 @@
 #include <cmath>
 #include <limits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace mm {
 namespace {
 
@@ -257,23 +261,74 @@ double face_separation(const placed_rectangle& a, const placed_rectangle& b) {
   return std::max(std::max(along_a, side_a), std::max(along_b, side_b));
 }
 
-double corner_distance(const placed_rectangle& a, const placed_rectangle& b) {
-  // Each rectangle's corners in the other's frame, from the centres' offset and the relative
-  // heading (cos c, sin s): centre ± half length · axis ± half width · side.
+namespace {
+
+/// The offset, half-length and half-width vectors of each rectangle in the other's frame, from the
+/// centres' offset and the relative heading (cos c, sin s): a corner is centre ± along ± across.
+struct corner_frames {
+  vec2 b_centre, b_along, b_across;  ///< b in a's frame
+  vec2 a_centre, a_along, a_across;  ///< a in b's frame
+};
+
+corner_frames frames_of(const placed_rectangle& a, const placed_rectangle& b) {
   const vec2 d = b.centre - a.centre;
   const double c = dot(a.axis, b.axis);
   const double s = cross(a.axis, b.axis);
-  const vec2 b_centre{dot(d, a.axis), cross(a.axis, d)};   // in a's frame
-  const vec2 b_along{b.half_length * c, b.half_length * s};
-  const vec2 b_across{-b.half_width * s, b.half_width * c};
-  const vec2 a_centre{-dot(d, b.axis), -cross(b.axis, d)};  // in b's frame
-  const vec2 a_along{a.half_length * c, -a.half_length * s};
-  const vec2 a_across{a.half_width * s, a.half_width * c};
+  return {{dot(d, a.axis), cross(a.axis, d)},
+          {b.half_length * c, b.half_length * s},
+          {-b.half_width * s, b.half_width * c},
+          {-dot(d, b.axis), -cross(b.axis, d)},
+          {a.half_length * c, -a.half_length * s},
+          {a.half_width * s, a.half_width * c}};
+}
+
+#if defined(__SSE2__)
+/// The smaller squared distances to the box of half sides (`length`, `width`) of the corners
+/// centre ± along + across (lane 0) and centre ± along − across (lane 1): `squared_distance_to_box`
+/// lane by lane, with the same operations in the same order (std::max(v, 0) is maxpd(0, v) and
+/// std::min(u, v) is minpd(v, u), signed zeros included), so bit for bit the scalar values.
+__m128d corner_squares(vec2 centre, vec2 along, vec2 across, double length, double width) {
+  const __m128d sign = _mm_set1_pd(-0.0);
+  const __m128d zero = _mm_setzero_pd();
+  const __m128d across_x = _mm_set_pd(-across.x, across.x);
+  const __m128d across_y = _mm_set_pd(-across.y, across.y);
+  const __m128d plus_x = _mm_add_pd(_mm_set1_pd(centre.x + along.x), across_x);
+  const __m128d plus_y = _mm_add_pd(_mm_set1_pd(centre.y + along.y), across_y);
+  const __m128d minus_x = _mm_add_pd(_mm_set1_pd(centre.x + -along.x), across_x);
+  const __m128d minus_y = _mm_add_pd(_mm_set1_pd(centre.y + -along.y), across_y);
+  const __m128d half_length = _mm_set1_pd(length);
+  const __m128d half_width = _mm_set1_pd(width);
+  const auto squared = [&](__m128d x, __m128d y) {
+    const __m128d dx = _mm_max_pd(zero, _mm_sub_pd(_mm_andnot_pd(sign, x), half_length));
+    const __m128d dy = _mm_max_pd(zero, _mm_sub_pd(_mm_andnot_pd(sign, y), half_width));
+    return _mm_add_pd(_mm_mul_pd(dx, dx), _mm_mul_pd(dy, dy));
+  };
+  return _mm_min_pd(squared(minus_x, minus_y), squared(plus_x, plus_y));
+}
+#endif
+
+}  // namespace
+
+double corner_distance(const placed_rectangle& a, const placed_rectangle& b) {
+#if defined(__SSE2__)
+  // The eight corners two at a time: 15 instead of 25 ns a call on this project's benchmark
+  // machine (docs/performance.md), equal bit for bit to `corner_distance_reference`.
+  const corner_frames f = frames_of(a, b);
+  const __m128d m = _mm_min_pd(corner_squares(f.a_centre, f.a_along, f.a_across, b.half_length, b.half_width),
+                               corner_squares(f.b_centre, f.b_along, f.b_across, a.half_length, a.half_width));
+  return std::sqrt(_mm_cvtsd_f64(_mm_min_sd(_mm_unpackhi_pd(m, m), m)));
+#else
+  return corner_distance_reference(a, b);
+#endif
+}
+
+double corner_distance_reference(const placed_rectangle& a, const placed_rectangle& b) {
+  const corner_frames f = frames_of(a, b);
   double best = std::numeric_limits<double>::infinity();
   for (const double along : {1.0, -1.0}) {
     for (const double across : {1.0, -1.0}) {
-      best = std::min(best, squared_distance_to_box(b_centre + along * b_along + across * b_across, a));
-      best = std::min(best, squared_distance_to_box(a_centre + along * a_along + across * a_across, b));
+      best = std::min(best, squared_distance_to_box(f.b_centre + along * f.b_along + across * f.b_across, a));
+      best = std::min(best, squared_distance_to_box(f.a_centre + along * f.a_along + across * f.a_across, b));
     }
   }
   return std::sqrt(best);
