@@ -9,6 +9,10 @@
 #include <string>
 #include <variant>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace mm {
 namespace {
 
@@ -192,6 +196,13 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
     }
     ++local_generation_;
   }
+  if (ordered_known_.size() != placements || ordered_generation_ == std::numeric_limits<std::uint8_t>::max()) {
+    ordered_known_.assign(placements, 0);
+    ordered_generation_ = 0;
+    ordered_.clear();
+    ordered_.resize(times_.size());
+  }
+  ++ordered_generation_;
   // The arc lengths' rows: the grids' are kept at the same speed (their samples are), the
   // nominal-curvature columns' found anew, and their cached arc lengths forgotten.
   if (kind == start_kind::same_speed && travel_row_.size() == sample_count_) {
@@ -394,6 +405,25 @@ double ego_sweep::largest_acceleration(std::size_t k, std::size_t m) const {
 }
 
 
+ego_sweep::placement_columns ego_sweep::ordered_placements(std::size_t k, std::size_t begin, std::size_t end) const {
+  if (!ordered_[k]) ordered_[k] = std::make_unique_for_overwrite<double[]>(4 * sample_count_);
+  double* const x = ordered_[k].get();
+  double* const y = x + sample_count_;
+  double* const c = y + sample_count_;
+  double* const s = c + sample_count_;
+  std::uint8_t* const stamps = ordered_known_.data() + k * sample_count_;
+  for (std::size_t p = begin; p < end; ++p) {
+    if (stamps[p] == ordered_generation_) continue;
+    const placement at_k = at(k, order_[p]);
+    x[p] = at_k.position.x;
+    y[p] = at_k.position.y;
+    c[p] = at_k.direction.x;
+    s[p] = at_k.direction.y;
+    stamps[p] = ordered_generation_;
+  }
+  return {x + begin, y + begin, c + begin, s + begin};
+}
+
 ego_sweep::placement ego_sweep::placement_at(std::size_t m, double t) const {
   return in_world(local_placement_at(m, t));
 }
@@ -500,6 +530,50 @@ constexpr double rounding_slack = 1e-12;
 bool surely_closer(vec2 v, double offset, double level) {
   const double within = offset + level - 1e-9 * (offset + std::abs(level)) - 1e-12;
   return within > 0.0 && squared_norm(v) < within * within;
+}
+
+/// `face_separation(ego, obstacle)` of the ego rectangle of half sides `half` placed at each of the
+/// first n `placements` and `obstacle`, into `out`: the same operations in the same order for
+/// every sample, two at a time with SSE2 (std::max(u, v) is maxpd(v, u), signed zeros included),
+/// so bit for bit `face_separation`.
+void face_separations_of(const ego_sweep::placement_columns& p, std::size_t n, vec2 half,
+                         const placed_rectangle& obstacle, double* out) {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  const __m128d sign = _mm_set1_pd(-0.0);
+  const __m128d ox = _mm_set1_pd(obstacle.centre.x);
+  const __m128d oy = _mm_set1_pd(obstacle.centre.y);
+  const __m128d bx = _mm_set1_pd(obstacle.axis.x);
+  const __m128d by = _mm_set1_pd(obstacle.axis.y);
+  const __m128d neg_by = _mm_set1_pd(-obstacle.axis.y);
+  const __m128d a_length = _mm_set1_pd(half.x);
+  const __m128d a_width = _mm_set1_pd(half.y);
+  const __m128d b_length = _mm_set1_pd(obstacle.half_length);
+  const __m128d b_width = _mm_set1_pd(obstacle.half_width);
+  const auto max = [](__m128d u, __m128d v) { return _mm_max_pd(v, u); };
+  const auto abs = [&](__m128d v) { return _mm_andnot_pd(sign, v); };
+  for (; i + 2 <= n; i += 2) {
+    const __m128d ax = _mm_loadu_pd(p.c + i);
+    const __m128d ay = _mm_loadu_pd(p.s + i);
+    const __m128d dx = _mm_sub_pd(ox, _mm_loadu_pd(p.x + i));
+    const __m128d dy = _mm_sub_pd(oy, _mm_loadu_pd(p.y + i));
+    const __m128d c = abs(_mm_add_pd(_mm_mul_pd(ax, bx), _mm_mul_pd(ay, by)));
+    const __m128d s = abs(_mm_sub_pd(_mm_mul_pd(ax, by), _mm_mul_pd(ay, bx)));
+    const __m128d along_a = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, ax), _mm_mul_pd(dy, ay))), a_length),
+                                       _mm_add_pd(_mm_mul_pd(b_length, c), _mm_mul_pd(b_width, s)));
+    const __m128d side_a =
+        _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, _mm_xor_pd(ay, sign)), _mm_mul_pd(dy, ax))), a_width),
+                   _mm_add_pd(_mm_mul_pd(b_length, s), _mm_mul_pd(b_width, c)));
+    const __m128d along_b = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, bx), _mm_mul_pd(dy, by))), b_length),
+                                       _mm_add_pd(_mm_mul_pd(a_length, c), _mm_mul_pd(a_width, s)));
+    const __m128d side_b = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, neg_by), _mm_mul_pd(dy, bx))), b_width),
+                                      _mm_add_pd(_mm_mul_pd(a_length, s), _mm_mul_pd(a_width, c)));
+    _mm_storeu_pd(out + i, max(max(along_a, side_a), max(along_b, side_b)));
+  }
+#endif
+  for (; i < n; ++i) {
+    out[i] = face_separation(placed_rectangle{{p.x[i], p.y[i]}, {p.c[i], p.s[i]}, half.x, half.y}, obstacle);
+  }
 }
 
 /// How fast a gap can close, in sample steps per metre: 1 / (rate · time_step), +∞ for a rate
@@ -912,13 +986,14 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     low = d - margin;
     high = low;
   }
-  // A sample is in one waiting block at a time, and a block is marked once: hit once, at the first
-  // sample time at which it overlaps (no wait passes a time at which one of its samples can).
+  // A sample is in one waiting block at a time and is hit once, at the first sample time at which it
+  // overlaps (no wait passes a time at which one of its samples can). A block whose samples were
+  // tested one by one (`raster_samples`) waits with some of them hit already: those keep their time.
   const auto mark_all = [&] {
     const bool record = !state.hit_at.empty();
     for (std::size_t q = b.begin; q < b.end; ++q) {
+      if (record && !state.hit.test(q)) state.hit_at[q] = sweep_.times()[k];
       state.hit.set(q);
-      if (record) state.hit_at[q] = sweep_.times()[k];
     }
   };
   if (single) {
@@ -937,11 +1012,50 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   } else if (state.hit_at.empty() && overlaps_whole_ahead(b, k, state)) {
     // Overlapping everywhere a little later: hit (when the first overlap is not recorded).
     mark_all();
+  } else if (b.end - b.begin <= together && shapes_ == shape_pair::rectangles) {
+    raster_samples(index, k, o, state);
   } else {
     // Undecided as a whole: its halves wait on their own from now on.
     raster_block(index + 1, k, o, state);
     raster_block(b.second, k, o, state);
   }
+}
+
+void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state) {
+  const ego_sweep::block& b = sweep_.block_of(index);
+  const std::size_t n = b.end - b.begin;
+  const ego_sweep::placement_columns p = sweep_.ordered_placements(k, b.begin, b.end);
+  std::array<double, together> face;
+  face_separations_of(p, n, ego_half_, o.rectangle, face.data());
+  const double margin = sweep_.window().margin;
+  const double step = sweep_.window().time_step;
+  const bool record = !state.hit_at.empty();
+  const std::vector<std::uint32_t>& order = sweep_.order();
+  std::size_t next = std::numeric_limits<std::size_t>::max();
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t q = b.begin + i;
+    if (state.hit.test(q)) continue;
+    ++work_.bound_checks;
+    // A single sample's test in `raster_block`: `clearance_at` ≤ 0, bit for bit.
+    double low = face[i] - margin - rounding_slack;
+    double high = std::numeric_limits<double>::infinity();
+    if (face[i] <= 0.0) {
+      high = face[i] - margin;
+    } else if (low <= 0.0) {
+      ++work_.distance_evaluations;
+      high = corner_distance(placed_rectangle{{p.x[i], p.y[i]}, {p.c[i], p.s[i]}, ego_half_.x, ego_half_.y},
+                             o.rectangle) -
+             margin;
+      low = high;
+    }
+    if (high <= 0.0) {
+      state.hit.set(q);
+      if (record) state.hit_at[q] = sweep_.times()[k];
+    } else {
+      next = std::min(next, first_possible(k, low, distance_rate(order[q]), step));
+    }
+  }
+  if (next != std::numeric_limits<std::size_t>::max()) state.wait(next, index);
 }
 
 bool clearance_field::overlaps_whole_ahead(const ego_sweep::block& b, std::size_t k, const raster_state& state) {

@@ -21,11 +21,15 @@
 
 namespace {
 
-/// Plans on `input` `count` times and returns a sum of the indices (so that the calls are not dropped).
-[[gnu::noinline]] double plan_repeatedly(const mm::plan_input& input, int count) {
+/// Plans on `input` `count` times and returns a sum of the indices (so that the calls are not dropped):
+/// with `mm::plan`, from scratch each time, or with one `mm::planner` when `keep_planner`, as a
+/// vehicle planning every step does (at an unchanged speed it keeps the sampled sets, the tree of
+/// blocks and the placements in the ego's frame; the first call samples them).
+[[gnu::noinline]] double plan_repeatedly(const mm::plan_input& input, int count, bool keep_planner) {
   double sum = 0.0;
+  mm::planner planner;
   for (int i = 0; i < count; ++i) {
-    const mm::plan_result r = mm::plan(input);
+    const mm::plan_result r = keep_planner ? planner.plan(input) : mm::plan(input);
     sum += r.mi_brake.empty() ? 0.0 : r.mi_brake.front() + r.mi_accelerate.front();
   }
   return sum;
@@ -66,7 +70,7 @@ void time_fields(const mm::plan_input& input, const mm::plan_result& r, int coun
   }
 }
 
-int replan(const std::string& path, int repeat, int fields) {
+int replan(const std::string& path, int repeat, int fields, bool keep_planner) {
   std::ifstream file(path);
   if (!file) throw std::runtime_error(path + ": cannot read the file");
   mm::plan_input input;
@@ -76,7 +80,7 @@ int replan(const std::string& path, int repeat, int fields) {
     throw std::runtime_error(path + ": " + e.what() +
                              " (expected a planning input saved by maneuvermap_capture --save)");
   }
-  if (repeat > 0) plan_repeatedly(input, repeat);
+  if (repeat > 0) plan_repeatedly(input, repeat, keep_planner);
   const mm::plan_result r = mm::plan(input);
   if (!r.ok()) throw std::runtime_error(path + ": " + r.error);
   std::printf("forecast_time %.3f family %s command %.6f %.6f mode %s\n", r.forecast_time,
@@ -112,5 +116,9 @@ int main(int argc, char** argv) {
   mm::tool_cli::add_whole(app, "--fields", fields, 0, INT_MAX,
                           "Also build the clearance field of every relevant obstacle this many times and print its "
                           "mean time [us], whether it is inert and its sampled collisions (>= 0)");
-  return mm::tool_cli::run(app, argc, argv, [&] { return replan(path, repeat, fields); });
+  bool keep_planner = false;
+  app.add_flag("--planner", keep_planner,
+               "Plan the --repeat times with one mm::planner, as a vehicle planning every step does, instead of "
+               "mm::plan from scratch");
+  return mm::tool_cli::run(app, argc, argv, [&] { return replan(path, repeat, fields, keep_planner); });
 }

@@ -101,6 +101,17 @@ class ego_sweep {
   /// Placement of sample m at any time t [s]: `maneuver_placement` bit for bit, cheaper on the
   /// straight part.
   placement placement_at(std::size_t m, double t) const;
+  /// World placements at time index k of the samples at tree-order positions [begin, end)
+  /// (`order()`), as columns: `x[i]`, `y[i]` the reference point [m] and (`c[i]`, `s[i]`) the heading
+  /// direction of position begin + i, equal bit for bit to `at(k, order()[begin + i])`. Laid out
+  /// for the rasters' tests of a block's samples together; computed on first use at each start.
+  struct placement_columns {
+    const double* x;
+    const double* y;
+    const double* c;
+    const double* s;
+  };
+  placement_columns ordered_placements(std::size_t k, std::size_t begin, std::size_t end) const;
   /// The straight part of sample m after T_h: its reference point is `start + (t − T_h) velocity`.
   struct line {
     vec2 start;     ///< at T_h, world frame [m]
@@ -280,6 +291,15 @@ class ego_sweep {
   mutable std::unique_ptr<stored[]> local_;
   mutable std::vector<std::uint8_t> local_known_;
   std::uint8_t local_generation_ = 0;
+  /// The world placements of `ordered_placements`: component j (x, y, c, s) of tree-order position
+  /// p at time index k is `ordered_[k][j · sample_count_ + p]`, valid where
+  /// `ordered_known_[k · sample_count_ + p]` holds `ordered_generation_` (a new stamp per start:
+  /// the pose changes). A time's columns are allocated uninitialised on its first use (21 KB at the
+  /// default resolution: from the heap's free memory, where one block for every time would be
+  /// mapped and faulted in anew by every plan from scratch).
+  mutable std::vector<std::unique_ptr<double[]>> ordered_;
+  mutable std::vector<std::uint8_t> ordered_known_;
+  std::uint8_t ordered_generation_ = 0;
   std::size_t time_count_ = 0;          ///< `times_.size()`
   /// Samples of one acceleration share their arc lengths s(t): `travel_row_[m]` is sample m's row,
   /// `row_acceleration_` each row's acceleration (the grids' rows first, `grid_travel_rows_` of
@@ -496,6 +516,14 @@ class clearance_field {
   /// is below minus the block's spread there. A block that a time index leaves undecided is often
   /// inside the obstacle a step later (it moves up to a metre a step), where one test decides it.
   bool overlaps_whole_ahead(const ego_sweep::block& b, std::size_t k, const raster_state& state);
+  /// `raster` of the samples of block `index` one by one, several at once (two rectangles): each
+  /// sample's test is the single sample's of `raster_block`; the block waits for the first time one
+  /// of them can overlap.
+  void raster_samples(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state);
+  /// Blocks of at most this many samples that a time leaves undecided have their samples tested
+  /// together (`raster_samples`) instead of being halved down to single samples: 16 took the fewest
+  /// instructions on the one-obstacle benchmark step among 8, 16 and 32 (docs/performance.md).
+  static constexpr std::size_t together = 16;
   /// Time indices a block undecided at one sample time is tried at ahead (`overlaps_whole_ahead`):
   /// 2 and 3 took the fewest instructions on the one-obstacle benchmark step (docs/performance.md).
   static constexpr std::size_t lookahead_steps = 2;
