@@ -405,7 +405,8 @@ double ego_sweep::largest_acceleration(std::size_t k, std::size_t m) const {
 }
 
 
-ego_sweep::placement_columns ego_sweep::ordered_placements(std::size_t k, std::size_t begin, std::size_t end) const {
+ego_sweep::placement_columns ego_sweep::ordered_placements(std::size_t k, std::size_t begin, std::size_t end,
+                                                           const sample_mask* skip) const {
   if (!ordered_[k]) ordered_[k] = std::make_unique_for_overwrite<double[]>(4 * sample_count_);
   double* const x = ordered_[k].get();
   double* const y = x + sample_count_;
@@ -414,6 +415,13 @@ ego_sweep::placement_columns ego_sweep::ordered_placements(std::size_t k, std::s
   std::uint8_t* const stamps = ordered_known_.data() + k * sample_count_;
   for (std::size_t p = begin; p < end; ++p) {
     if (stamps[p] == ordered_generation_) continue;
+    if (skip != nullptr && skip->test(p)) {
+      x[p] = 0.0;
+      y[p] = 0.0;
+      c[p] = 1.0;
+      s[p] = 0.0;
+      continue;
+    }
     const placement at_k = at(k, order_[p]);
     x[p] = at_k.position.x;
     y[p] = at_k.position.y;
@@ -1024,7 +1032,7 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
 void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state) {
   const ego_sweep::block& b = sweep_.block_of(index);
   const std::size_t n = b.end - b.begin;
-  const ego_sweep::placement_columns p = sweep_.ordered_placements(k, b.begin, b.end);
+  const ego_sweep::placement_columns p = sweep_.ordered_placements(k, b.begin, b.end, &state.hit);
   std::array<double, together> face;
   face_separations_of(p, n, ego_half_, o.rectangle, face.data());
   const double margin = sweep_.window().margin;

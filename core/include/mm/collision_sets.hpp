@@ -111,7 +111,10 @@ class ego_sweep {
     const double* c;
     const double* s;
   };
-  placement_columns ordered_placements(std::size_t k, std::size_t begin, std::size_t end) const;
+  /// Positions that `skip` (indexed by tree-order position) holds are not computed: they hold the
+  /// placement at the origin with heading +x, for the caller not to read.
+  placement_columns ordered_placements(std::size_t k, std::size_t begin, std::size_t end,
+                                       const sample_mask* skip = nullptr) const;
   /// The straight part of sample m after T_h: its reference point is `start + (t − T_h) velocity`.
   struct line {
     vec2 start;     ///< at T_h, world frame [m]
