@@ -1,6 +1,7 @@
-// maneuvermap_bench: the planner on fixed inputs captured from the built-in scenarios, the
-// reference planner on the one-obstacle input, one whole S3 run and the first 4 s of the
-// 50-vehicle roundabout (docs/performance.md).
+// maneuvermap_bench: the planner on fixed inputs captured from the built-in scenarios (from scratch,
+// and with one mm::planner kept as a vehicle planning every step keeps it), the reference planner on
+// the one-obstacle input, one whole S3 run and the first 4 s of the 50-vehicle roundabout
+// (docs/performance.md).
 //
 //   build/release/benchmarks/maneuvermap_bench [Google Benchmark flags]
 //
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "captured_inputs.hpp"
+#include "mm/planner.hpp"
 #include "mm/reference_planner.hpp"
 #include "mm/scenario_file/loader.hpp"
 #include "mm/sim/memory.hpp"
@@ -71,6 +73,16 @@ void plan_case(benchmark::State& state) {
     return;
   }
   timed_plan(state, in);
+}
+
+/// The captured input planned by one `mm::planner` every iteration, as a vehicle planning every step
+/// at an unchanged speed does: each call starts the planner again (its result is `mm::plan`'s, bit
+/// for bit) but keeps the sampled sets, the tree of blocks and the placements in the ego's frame.
+void planner_case(benchmark::State& state) {
+  const auto wanted = static_cast<std::size_t>(state.range(0));
+  const mm::plan_input& in = input_with(wanted);
+  mm::planner planner;
+  timed_loop(state, [&] { return planner.plan(in); });
 }
 
 /// The one-obstacle input with `state.range(0)` forecast times spread over the same 0..2 s.
@@ -138,6 +150,13 @@ benchmark::internal::Benchmark* repeated(benchmark::internal::Benchmark* b, int 
 void register_all() {
   for (const mm::bench::captured_input& c : mm::bench::captured_inputs()) {
     repeated(benchmark::RegisterBenchmark("plan", plan_case), 5)
+        ->ArgName("obstacles")
+        ->Arg(static_cast<long>(c.interacting))
+        ->Unit(benchmark::kMicrosecond);
+  }
+  for (const mm::bench::captured_input& c : mm::bench::captured_inputs()) {
+    if (c.interacting == 0) continue;
+    repeated(benchmark::RegisterBenchmark("planner", planner_case), 5)
         ->ArgName("obstacles")
         ->Arg(static_cast<long>(c.interacting))
         ->Unit(benchmark::kMicrosecond);
