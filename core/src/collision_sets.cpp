@@ -184,10 +184,7 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
   time_count_ = times_.size();
   const std::size_t placements = times_.size() * sample_count_;
   if (same_times) {
-    for (std::size_t k = 0; k < times_.size(); ++k) {
-      std::fill(local_known_.begin() + static_cast<std::ptrdiff_t>(placement_index(k, kept)),
-                local_known_.begin() + static_cast<std::ptrdiff_t>(placement_index(k, 0) + sample_count_), 0);
-    }
+    std::fill(local_known_.begin() + static_cast<std::ptrdiff_t>(placement_index(0, kept)), local_known_.end(), 0);
   } else {
     if (local_known_.size() != placements || local_generation_ == std::numeric_limits<std::uint8_t>::max()) {
       local_known_.assign(placements, 0);

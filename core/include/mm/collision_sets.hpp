@@ -215,10 +215,11 @@ class ego_sweep {
     return {ego_.pose.position + rotated(local.position, start_rotation_.x, start_rotation_.y),
             rotated(local.direction, start_rotation_.x, start_rotation_.y)};
   }
-  /// Where the placement of sample m at time index k is cached: time by time, so that the
-  /// rasters, which look at many samples at one time, read neighbouring memory (a sample's walk over
-  /// the window strides by a constant step, which the processor's prefetcher follows).
-  std::size_t placement_index(std::size_t k, std::size_t m) const { return k * sample_count_ + m; }
+  /// Where the placement of sample m at time index k is cached: sample by sample, so that the
+  /// walks of one sample over the window (exact values, floors) and a block's centre looked at on
+  /// consecutive times read neighbouring memory (the rasters' tests of many samples at one time read
+  /// `ordered_placements` instead; time by time, this cache cost the busy roundabout about 3 %).
+  std::size_t placement_index(std::size_t k, std::size_t m) const { return m * time_count_ + k; }
   /// How a start relates to the previous one: none; the same speed, so the grids' samples and their
   /// speeds are the previous start's (only the nominal-curvature columns' are computed again); or a
   /// new speed, whose grids were sampled again with the same shape.
