@@ -1033,10 +1033,9 @@ void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const p
   std::array<double, together> face;
   face_separations_of(p, n, ego_half_, o.rectangle, face.data());
   const double margin = sweep_.window().margin;
-  const double step = sweep_.window().time_step;
   const bool record = !state.hit_at.empty();
-  const std::vector<std::uint32_t>& order = sweep_.order();
-  std::size_t next = std::numeric_limits<std::size_t>::max();
+  // The block waits until the smallest gap of its clear samples can close at the largest rate L.
+  double gap = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t q = b.begin + i;
     if (state.hit.test(q)) continue;
@@ -1057,10 +1056,12 @@ void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const p
       state.hit.set(q);
       if (record) state.hit_at[q] = sweep_.times()[k];
     } else {
-      next = std::min(next, first_possible(k, low, distance_rate(order[q]), step));
+      gap = std::min(gap, low);
     }
   }
-  if (next != std::numeric_limits<std::size_t>::max()) state.wait(next, index);
+  if (gap != std::numeric_limits<double>::infinity()) {
+    state.wait(first_possible(k, gap, closing_speed{distance_steps_}), index);
+  }
 }
 
 bool clearance_field::overlaps_whole_ahead(const ego_sweep::block& b, std::size_t k, const raster_state& state) {
