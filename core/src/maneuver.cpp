@@ -19,6 +19,22 @@ double speed_after(double initial_speed, double acceleration, double t, double s
 }
 
 double travelled_distance(double initial_speed, double acceleration, double t, double speed_cap) {
+  // One piece when the speed at t is inside (0, v_cap) by more than 10⁻⁹ of the speeds involved: the
+  // reference's quotients −v0/a and (v_cap − v0)/a are then beyond t (or ≤ 0) after rounding, its
+  // breaks collapse onto 0 and t, and its one trapezoid is this one, operation for operation.
+  if (t > 0.0 && acceleration != 0.0 && initial_speed >= 0.0 && initial_speed <= speed_cap) {
+    const double end = initial_speed + acceleration * t;
+    const double slack = 1e-9 * (speed_cap + std::abs(acceleration) * t);
+    if (end > slack && end < speed_cap - slack) {
+      return 0.5 * (speed_after(initial_speed, acceleration, 0.0, speed_cap) +
+                    speed_after(initial_speed, acceleration, t, speed_cap)) *
+             t;
+    }
+  }
+  return travelled_distance_reference(initial_speed, acceleration, t, speed_cap);
+}
+
+double travelled_distance_reference(double initial_speed, double acceleration, double t, double speed_cap) {
   if (t <= 0.0) return 0.0;
   if (acceleration == 0.0) return std::clamp(initial_speed, 0.0, speed_cap) * t;
   // v0 + a·τ crosses 0 and v_cap at these times; between consecutive break points the clamped

@@ -40,7 +40,13 @@ double max_curvature(double speed, const ego_limits& limits);
 double speed_after(double initial_speed, double acceleration, double t, double speed_cap);
 
 /// s(t) = ∫₀ᵗ clamp(v0 + a·τ, 0, v_cap) dτ [m]: travelled arc length, stopping at zero speed (§3).
+/// Where the speed stays clearly inside [0, v_cap] up to t, the one trapezoid without the divisions
+/// that find where it would leave: equal bit for bit to `travelled_distance_reference`.
 double travelled_distance(double initial_speed, double acceleration, double t, double speed_cap);
+
+/// The reference for `travelled_distance`: the trapezoid rule on each piece between the times at
+/// which the speed reaches 0 and v_cap (exact, the speed being linear on each).
+double travelled_distance_reference(double initial_speed, double acceleration, double t, double speed_cap);
 
 /// End point of a circular arc of curvature κ [1/m] and arc length s [m] in the frame of its start
 /// (x forward): (sin(κs)/κ, (1 − cos κs)/κ), the straight segment (s, 0) when κ = 0 (§3).
