@@ -9,10 +9,6 @@
 #include <string>
 #include <variant>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace mm {
 namespace {
 
@@ -537,49 +533,6 @@ bool surely_closer(vec2 v, double offset, double level) {
   return within > 0.0 && squared_norm(v) < within * within;
 }
 
-/// `face_separation(ego, obstacle)` of the ego rectangle of half sides `half` placed at each of the
-/// first n `placements` and `obstacle`, into `out`: the same operations in the same order for
-/// every sample, two at a time with SSE2 (std::max(u, v) is maxpd(v, u), signed zeros included),
-/// so bit for bit `face_separation`.
-void face_separations_of(const ego_sweep::placement_columns& p, std::size_t n, vec2 half,
-                         const placed_rectangle& obstacle, double* out) {
-  std::size_t i = 0;
-#if defined(__SSE2__)
-  const __m128d sign = _mm_set1_pd(-0.0);
-  const __m128d ox = _mm_set1_pd(obstacle.centre.x);
-  const __m128d oy = _mm_set1_pd(obstacle.centre.y);
-  const __m128d bx = _mm_set1_pd(obstacle.axis.x);
-  const __m128d by = _mm_set1_pd(obstacle.axis.y);
-  const __m128d neg_by = _mm_set1_pd(-obstacle.axis.y);
-  const __m128d a_length = _mm_set1_pd(half.x);
-  const __m128d a_width = _mm_set1_pd(half.y);
-  const __m128d b_length = _mm_set1_pd(obstacle.half_length);
-  const __m128d b_width = _mm_set1_pd(obstacle.half_width);
-  const auto max = [](__m128d u, __m128d v) { return _mm_max_pd(v, u); };
-  const auto abs = [&](__m128d v) { return _mm_andnot_pd(sign, v); };
-  for (; i + 2 <= n; i += 2) {
-    const __m128d ax = _mm_loadu_pd(p.c + i);
-    const __m128d ay = _mm_loadu_pd(p.s + i);
-    const __m128d dx = _mm_sub_pd(ox, _mm_loadu_pd(p.x + i));
-    const __m128d dy = _mm_sub_pd(oy, _mm_loadu_pd(p.y + i));
-    const __m128d c = abs(_mm_add_pd(_mm_mul_pd(ax, bx), _mm_mul_pd(ay, by)));
-    const __m128d s = abs(_mm_sub_pd(_mm_mul_pd(ax, by), _mm_mul_pd(ay, bx)));
-    const __m128d along_a = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, ax), _mm_mul_pd(dy, ay))), a_length),
-                                       _mm_add_pd(_mm_mul_pd(b_length, c), _mm_mul_pd(b_width, s)));
-    const __m128d side_a =
-        _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, _mm_xor_pd(ay, sign)), _mm_mul_pd(dy, ax))), a_width),
-                   _mm_add_pd(_mm_mul_pd(b_length, s), _mm_mul_pd(b_width, c)));
-    const __m128d along_b = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, bx), _mm_mul_pd(dy, by))), b_length),
-                                       _mm_add_pd(_mm_mul_pd(a_length, c), _mm_mul_pd(a_width, s)));
-    const __m128d side_b = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, neg_by), _mm_mul_pd(dy, bx))), b_width),
-                                      _mm_add_pd(_mm_mul_pd(a_length, s), _mm_mul_pd(a_width, c)));
-    _mm_storeu_pd(out + i, max(max(along_a, side_a), max(along_b, side_b)));
-  }
-#endif
-  for (; i < n; ++i) {
-    out[i] = face_separation(placed_rectangle{{p.x[i], p.y[i]}, {p.c[i], p.s[i]}, half.x, half.y}, obstacle);
-  }
-}
 
 /// How fast a gap can close, in sample steps per metre: 1 / (rate · time_step), +∞ for a rate
 /// of 0 (found once per walk, so that its steps multiply instead of divide).
@@ -960,9 +913,9 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
         const double rate = single ? centre_rate(b.centre) : centre_rate_;
         const double velocity_spread = single ? 0.0 : sweep_.velocity_spread(b, k);
         const double change = dot(apart, closing) / centres - velocity_spread - 2.0 * spread * norm(closing) / centres;
-        const double curvature =
-            rate * rate / level + (single ? sweep_.largest_acceleration(k, b.centre) : sweep_.largest_acceleration(b, k)) +
-            obstacle_acceleration_;
+        const double curvature = rate * rate / level +
+                                 (single ? sweep_.largest_acceleration(k, b.centre) : sweep_.largest_acceleration(b, k)) +
+                                 obstacle_acceleration_;
         next = std::max<std::size_t>(next, until_second_order(k, disc, change, curvature));
       }
       state.wait(next, index);
@@ -1026,12 +979,13 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   }
 }
 
-void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state) {
+void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const placed_obstacle& o,
+                                     raster_state& state) {
   const ego_sweep::block& b = sweep_.block_of(index);
   const std::size_t n = b.end - b.begin;
   const ego_sweep::placement_columns p = sweep_.ordered_placements(k, b.begin, b.end, &state.hit);
   std::array<double, together> face;
-  face_separations_of(p, n, ego_half_, o.rectangle, face.data());
+  face_separation_of_each(n, p.x, p.y, p.c, p.s, ego_half_, o.rectangle, face.data());
   const double margin = sweep_.window().margin;
   const bool record = !state.hit_at.empty();
   // The block waits until the smallest gap of its clear samples can close at the largest rate L.

@@ -261,6 +261,46 @@ double face_separation(const placed_rectangle& a, const placed_rectangle& b) {
   return std::max(std::max(along_a, side_a), std::max(along_b, side_b));
 }
 
+void face_separation_of_each(std::size_t n, const double* x, const double* y, const double* c, const double* s,
+                             vec2 half, const placed_rectangle& b, double* out) {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  // Lane by lane `face_separation(a_i, b)`: std::abs is the cleared sign bit, std::max(u, v) is
+  // maxpd(v, u) (the same operand on ties, signed zeros included).
+  const __m128d sign = _mm_set1_pd(-0.0);
+  const __m128d bx = _mm_set1_pd(b.axis.x);
+  const __m128d by = _mm_set1_pd(b.axis.y);
+  const __m128d neg_by = _mm_set1_pd(-b.axis.y);
+  const __m128d centre_x = _mm_set1_pd(b.centre.x);
+  const __m128d centre_y = _mm_set1_pd(b.centre.y);
+  const __m128d a_length = _mm_set1_pd(half.x);
+  const __m128d a_width = _mm_set1_pd(half.y);
+  const __m128d b_length = _mm_set1_pd(b.half_length);
+  const __m128d b_width = _mm_set1_pd(b.half_width);
+  const auto max = [](__m128d u, __m128d v) { return _mm_max_pd(v, u); };
+  const auto abs = [&](__m128d v) { return _mm_andnot_pd(sign, v); };
+  for (; i + 2 <= n; i += 2) {
+    const __m128d ax = _mm_loadu_pd(c + i);
+    const __m128d ay = _mm_loadu_pd(s + i);
+    const __m128d dx = _mm_sub_pd(centre_x, _mm_loadu_pd(x + i));
+    const __m128d dy = _mm_sub_pd(centre_y, _mm_loadu_pd(y + i));
+    const __m128d cosine = abs(_mm_add_pd(_mm_mul_pd(ax, bx), _mm_mul_pd(ay, by)));
+    const __m128d sine = abs(_mm_sub_pd(_mm_mul_pd(ax, by), _mm_mul_pd(ay, bx)));
+    const __m128d along_a = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, ax), _mm_mul_pd(dy, ay))), a_length),
+                                       _mm_add_pd(_mm_mul_pd(b_length, cosine), _mm_mul_pd(b_width, sine)));
+    const __m128d side_a =
+        _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, _mm_xor_pd(ay, sign)), _mm_mul_pd(dy, ax))), a_width),
+                   _mm_add_pd(_mm_mul_pd(b_length, sine), _mm_mul_pd(b_width, cosine)));
+    const __m128d along_b = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, bx), _mm_mul_pd(dy, by))), b_length),
+                                       _mm_add_pd(_mm_mul_pd(a_length, cosine), _mm_mul_pd(a_width, sine)));
+    const __m128d side_b = _mm_sub_pd(_mm_sub_pd(abs(_mm_add_pd(_mm_mul_pd(dx, neg_by), _mm_mul_pd(dy, bx))), b_width),
+                                      _mm_add_pd(_mm_mul_pd(a_length, sine), _mm_mul_pd(a_width, cosine)));
+    _mm_storeu_pd(out + i, max(max(along_a, side_a), max(along_b, side_b)));
+  }
+#endif
+  for (; i < n; ++i) out[i] = face_separation(placed_rectangle{{x[i], y[i]}, {c[i], s[i]}, half.x, half.y}, b);
+}
+
 namespace {
 
 /// The offset, half-length and half-width vectors of each rectangle in the other's frame, from the

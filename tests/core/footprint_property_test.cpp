@@ -6,6 +6,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "property.hpp"
 
@@ -56,6 +57,43 @@ TEST(footprint_property, rectangle_closed_forms_equal_the_placed_footprints_and_
       ASSERT_EQ(separation, closed) << input;
     } else {
       ASSERT_EQ(corner_distance(qa, qb), closed) << input;
+    }
+  }
+}
+
+TEST(footprint_property, the_face_separation_of_each_of_many_rectangles_equals_face_separation_bit_for_bit) {
+  std::mt19937_64 rng(testing::property_seed() + 7);
+  std::uniform_real_distribution<double> coordinate(-6.0, 6.0);
+  std::uniform_real_distribution<double> angle(-pi, pi);
+  std::uniform_real_distribution<double> size(0.0, 3.0);
+  std::uniform_int_distribution<std::size_t> length(0, 17);
+  const std::size_t count = testing::property_count(5000);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const std::size_t n = length(rng);
+    const vec2 half{size(rng), size(rng)};
+    const double heading = angle(rng);
+    const placed_rectangle b{{coordinate(rng), coordinate(rng)}, unit_vector(heading), size(rng), size(rng)};
+    std::vector<double> x(n), y(n), c(n), s(n), out(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      // Some parallel to b, some touching it along a face, some on its centre.
+      const int kind = static_cast<int>(rng() % 4);
+      const vec2 axis = kind == 1 ? b.axis : unit_vector(angle(rng));
+      vec2 centre{coordinate(rng), coordinate(rng)};
+      if (kind == 2) centre = b.centre + (b.half_length + half.x) * b.axis;
+      if (kind == 3) centre = b.centre;
+      x[i] = centre.x;
+      y[i] = centre.y;
+      c[i] = axis.x;
+      s[i] = axis.y;
+    }
+    face_separation_of_each(n, x.data(), y.data(), c.data(), s.data(), half, b, out.data());
+    for (std::size_t i = 0; i < n; ++i) {
+      const double single = face_separation(placed_rectangle{{x[i], y[i]}, {c[i], s[i]}, half.x, half.y}, b);
+      ASSERT_EQ(std::signbit(out[i]), std::signbit(single));
+      ASSERT_EQ(out[i], single) << "trial " << trial << ", rectangle " << i << " of " << n << " at (" << x[i] << ", "
+                                << y[i] << ") axis (" << c[i] << ", " << s[i] << ") half sides " << half.x << " x "
+                                << half.y << ", b at (" << b.centre.x << ", " << b.centre.y << ") axis (" << b.axis.x
+                                << ", " << b.axis.y << ") half sides " << b.half_length << " x " << b.half_width;
     }
   }
 }

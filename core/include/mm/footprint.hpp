@@ -63,6 +63,13 @@ struct placed_rectangle {
 /// signed distance, equal to it when they overlap (separating-axis theorem).
 double face_separation(const placed_rectangle& a, const placed_rectangle& b);
 
+/// `face_separation(a_i, b)` [m] of n rectangles a_i of half length `half.x` and half width `half.y`
+/// [m], centred at (x[i], y[i]) with heading direction (c[i], s[i]), and `b`, into out[i]: two at a
+/// time where the processor has SSE2, with the operations of `face_separation` in the same order,
+/// so equal to it bit for bit (what `clearance_field` tests a block's samples with).
+void face_separation_of_each(std::size_t n, const double* x, const double* y, const double* c, const double* s,
+                             vec2 half, const placed_rectangle& b, double* out);
+
 /// Distance of two rectangles that do not overlap [m]: the smallest distance from a corner of one
 /// to the other (exact for convex shapes when they are apart). Two corners at a time where the
 /// processor has SSE2: equal bit for bit to `corner_distance_reference`.
