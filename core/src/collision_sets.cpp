@@ -189,7 +189,8 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
     }
     ++local_generation_;
   }
-  if (ordered_known_.size() != placements || ordered_generation_ == std::numeric_limits<std::uint8_t>::max()) {
+  if (ordered_known_.size() != placements || ordered_.size() != times_.size() ||
+      ordered_generation_ == std::numeric_limits<std::uint8_t>::max()) {
     ordered_known_.assign(placements, 0);
     ordered_generation_ = 0;
     ordered_.clear();
