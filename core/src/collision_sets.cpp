@@ -883,6 +883,16 @@ void clearance_field::raster_state::postpone(std::size_t k) {
   }
 }
 
+template <class Corners>
+clearance_field::clearance_bounds clearance_field::rectangle_bounds(double face, double margin, bool corners,
+                                                                    Corners&& corner_distance) {
+  if (face <= 0.0) return {face - margin - rounding_slack, face - margin};
+  if (!corners) return {face - margin - rounding_slack, std::numeric_limits<double>::infinity()};
+  ++work_.distance_evaluations;
+  const double high = corner_distance() - margin;
+  return {high, high};
+}
+
 void clearance_field::raster_block(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state) {
   const ego_sweep::block& b = sweep_.block_of(index);
   if (state.hit.all_in(b.begin, b.end)) return;
@@ -928,15 +938,12 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   if (shapes_ == shape_pair::rectangles) {
     const placed_rectangle ego_rectangle{p.position, p.direction, ego_half_.x, ego_half_.y};
     const double face = face_separation(ego_rectangle, o.rectangle);
-    low = face - margin - rounding_slack;
-    if (face <= 0.0) {
-      high = face - margin;
-    } else if (single ? low <= 0.0 : face + spread < margin) {
-      // Apart, but the margin can still make it (or the whole block) overlap: the exact distance.
-      ++work_.distance_evaluations;
-      high = corner_distance(ego_rectangle, o.rectangle) - margin;
-      low = high;
-    }
+    // Apart, the exact distance where the margin can still make it (or the whole block) overlap.
+    const clearance_bounds c =
+        rectangle_bounds(face, margin, single ? face - margin - rounding_slack <= 0.0 : face + spread < margin,
+                         [&] { return corner_distance(ego_rectangle, o.rectangle); });
+    low = c.low;
+    high = c.high;
   } else {
     ++work_.distance_evaluations;
     const double d = shapes_ == shape_pair::general
@@ -996,22 +1003,15 @@ void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const p
     if (state.hit.test(q)) continue;
     ++work_.bound_checks;
     // A single sample's test in `raster_block`: `clearance_at` ≤ 0, bit for bit.
-    double low = face[i] - margin - rounding_slack;
-    double high = std::numeric_limits<double>::infinity();
-    if (face[i] <= 0.0) {
-      high = face[i] - margin;
-    } else if (low <= 0.0) {
-      ++work_.distance_evaluations;
-      high = corner_distance(placed_rectangle{{p.x[i], p.y[i]}, {p.c[i], p.s[i]}, ego_half_.x, ego_half_.y},
-                             o.rectangle) -
-             margin;
-      low = high;
-    }
-    if (high <= 0.0) {
+    const clearance_bounds c = rectangle_bounds(face[i], margin, face[i] - margin - rounding_slack <= 0.0, [&] {
+      const placed_rectangle ego{{p.x[i], p.y[i]}, {p.c[i], p.s[i]}, ego_half_.x, ego_half_.y};
+      return corner_distance(ego, o.rectangle);
+    });
+    if (c.high <= 0.0) {
       state.hit.set(q);
       if (record) state.hit_at[q] = sweep_.times()[k];
     } else {
-      gap = std::min(gap, low);
+      gap = std::min(gap, c.low);
     }
   }
   if (gap != std::numeric_limits<double>::infinity()) {
@@ -1029,19 +1029,12 @@ bool clearance_field::overlaps_whole_ahead(const ego_sweep::block& b, std::size_
     double high = 0.0;
     const double spread = sweep_.block_spread(b, later);
     if (shapes_ == shape_pair::rectangles) {
-      // The face separation is the signed distance when ≤ 0 and a lower bound of it otherwise: the
-      // corners' distance only where the margin can still make the whole block overlap.
+      // The corners' distance only where the margin can still make the whole block overlap.
       const placed_rectangle ego{p.position, p.direction, ego_half_.x, ego_half_.y};
       const placed_rectangle obstacle{o.position, o.direction, obstacle_half_.x, obstacle_half_.y};
       const double face = face_separation(ego, obstacle);
-      if (face <= 0.0) {
-        high = face - margin;
-      } else if (face + spread + rounding_slack <= margin) {
-        ++work_.distance_evaluations;
-        high = corner_distance(ego, obstacle) - margin;
-      } else {
-        continue;
-      }
+      const auto corners = [&] { return corner_distance(ego, obstacle); };
+      high = rectangle_bounds(face, margin, face + spread < margin, corners).high;
     } else {
       ++work_.distance_evaluations;
       high = distance(p.position, p.direction, o) - margin;

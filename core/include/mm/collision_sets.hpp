@@ -475,6 +475,17 @@ class clearance_field {
   /// rectangles whose face separation − margin is already ≥ `enough`, that separation (it changes
   /// no faster than the signed distance), without the corner distances.
   lower_bound distance_or_bound(const ego_sweep::placement& p, const obstacle_at& o, double enough) const;
+  /// Bounds [low, high] of the signed distance − `margin` [m] of two rectangles from their face
+  /// separation `face`: where they overlap, high is the face separation − margin; where they are
+  /// apart and `corners`, both are `corner_distance()` − margin (their corners' distance); else low
+  /// is the face separation − margin less the rounding slack and high +∞. The rasters' one test of a
+  /// block's centre or a sample (`corners`: where the margin can still make it overlap).
+  struct clearance_bounds {
+    double low;
+    double high;
+  };
+  template <class Corners>
+  clearance_bounds rectangle_bounds(double face, double margin, bool corners, Corners&& corner_distance);
   /// What the raster of a forecast time knows after some sample times: the samples that overlapped
   /// (tree order, `ego_sweep::order`), and the blocks to look at again, each in the list of the
   /// first time index at which one of its samples can overlap (a block whose halves wait on their
