@@ -62,27 +62,32 @@ void timed_plan(benchmark::State& state, const mm::plan_input& in) {
   state.counters["assignments"] = static_cast<double>(work.assignments_evaluated);
 }
 
-void plan_case(benchmark::State& state) {
+/// The captured input of `state.range(0)` interacting obstacles, or null (the case skipped with an
+/// error) when the replayed input no longer has them (scenarios can change).
+const mm::plan_input* checked_input(benchmark::State& state) {
   const auto wanted = static_cast<std::size_t>(state.range(0));
   const mm::plan_input& in = input_with(wanted);
-  // The replayed input must still be what it was captured as (scenarios can change).
   const std::size_t interacting = mm::capture::count_interactions(in).interacting;
   if (interacting != wanted) {
     state.SkipWithError(("the captured input has " + std::to_string(interacting) + " interacting obstacles, not " +
                          std::to_string(wanted) + ": capture it again (tools/capture)").c_str());
-    return;
+    return nullptr;
   }
-  timed_plan(state, in);
+  return &in;
+}
+
+void plan_case(benchmark::State& state) {
+  if (const mm::plan_input* in = checked_input(state)) timed_plan(state, *in);
 }
 
 /// The captured input planned by one `mm::planner` every iteration, as a vehicle planning every step
 /// at an unchanged speed does: each call starts the planner again (its result is `mm::plan`'s, bit
 /// for bit) but keeps the sampled sets, the tree of blocks and the placements in the ego's frame.
 void planner_case(benchmark::State& state) {
-  const auto wanted = static_cast<std::size_t>(state.range(0));
-  const mm::plan_input& in = input_with(wanted);
+  const mm::plan_input* in = checked_input(state);
+  if (in == nullptr) return;
   mm::planner planner;
-  timed_loop(state, [&] { return planner.plan(in); });
+  timed_loop(state, [&] { return planner.plan(*in); });
 }
 
 /// The one-obstacle input with `state.range(0)` forecast times spread over the same 0..2 s.
