@@ -536,11 +536,12 @@ class clearance_field {
   /// of them can overlap.
   void raster_samples(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state);
   /// Blocks of at most this many samples that a time leaves undecided have their samples tested
-  /// together (`raster_samples`) instead of being halved down to single samples: 16 took the fewest
-  /// instructions on the one-obstacle benchmark step among 8, 16 and 32 (docs/performance.md).
+  /// together (`raster_samples`) instead of being halved down to single samples: 8, 16 and 32 took
+  /// the one-obstacle benchmark step the same time within the noise (docs/performance.md).
   static constexpr std::size_t together = 16;
   /// Time indices a block undecided at one sample time is tried at ahead (`overlaps_whole_ahead`):
-  /// 2 and 3 took the fewest instructions on the one-obstacle benchmark step (docs/performance.md).
+  /// 2 took the fewest instructions on the one-obstacle benchmark step among 1, 2 and 3 (7.63, 7.61
+  /// and 7.65 M, before the samples of small blocks were tested together).
   static constexpr std::size_t lookahead_steps = 2;
   /// Marks in `state` every sample not marked yet that overlaps the obstacle forecast with forecast
   /// time i at some time of the straight part (the closed form, block by block from the roots).
