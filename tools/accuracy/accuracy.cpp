@@ -18,21 +18,12 @@
 #include <string_view>
 #include <vector>
 
+#include "mm/plan_comparison.hpp"
 #include "mm/reference_planner.hpp"
 #include "mm/tool_cli.hpp"
 #include "random_scenes.hpp"
 
 namespace {
-
-/// Margin between the best and the second-best candidate of ADJ (by forecast time).
-double adj_margin(const mm::plan_result& r) {
-  std::vector<double> rooms;
-  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
-    if (!r.excluded[i]) rooms.push_back(std::max(r.mi_brake[i], r.mi_accelerate[i]));
-  }
-  std::sort(rooms.rbegin(), rooms.rend());
-  return rooms.size() < 2 ? 1.0 : rooms[0] - rooms[1];
-}
 
 struct fast_setting {
   mm::sampling_resolution resolution;
@@ -156,14 +147,10 @@ int measure(const accuracy_options& o) {
         std::fprintf(stderr, "scene %zu, fast %s: %s\n", s, setting.label().c_str(), f.error.c_str());
         return 1;
       }
-      double scene_worst = 0.0;
-      for (std::size_t i = 0; i < f.forecast_times.size(); ++i) {
-        scene_worst = std::max({scene_worst, std::abs(f.mi_brake[i] - r.mi_brake[i]),
-                                std::abs(f.mi_accelerate[i] - r.mi_accelerate[i])});
-      }
+      const double scene_worst = mm::plan_comparison::largest_index_difference(f, r).value;
       setting.errors.push_back(scene_worst);
       setting.worst = std::max(setting.worst, scene_worst);
-      if (adj_margin(r) > 0.02 && (f.forecast_index != r.forecast_index || f.selected_family != r.selected_family)) {
+      if (mm::plan_comparison::forecast_time_margin(r) > 0.02 && (f.forecast_index != r.forecast_index || f.selected_family != r.selected_family)) {
         ++setting.disagreements;
       }
       if (signs) {

@@ -59,21 +59,10 @@ CLI::Validator parameter_override() {
       "");
 }
 
-/// Throws when --agent is not a planning vehicle of `sim`, naming the ones there are.
-void check_agent(const mm::sim::simulation& sim, const capture_options& o) {
-  const auto id = sim.find(o.agent);
-  if (id && *id < sim.planning_vehicle_count()) return;
-  std::string names;
-  for (mm::sim::agent_id i = 0; i < sim.planning_vehicle_count(); ++i) {
-    names += (names.empty() ? "" : ", ") + sim.info(i).name;
-  }
-  throw std::runtime_error("--agent " + o.agent + ": no planning vehicle of that name in " + o.scenario +
-                           " (expected one of: " + names + ")");
-}
-
 /// --save: writes the planning input of the agent at --at as JSON.
 int save_input(const capture_options& o, const mm::scenario_file::load_options& options) {
-  check_agent(mm::sim::simulation(mm::scenario_file::load(o.scenario, options).scenario), o);
+  mm::capture::check_planning_vehicle(mm::sim::simulation(mm::scenario_file::load(o.scenario, options).scenario),
+                                      o.agent, o.scenario);
   const mm::plan_input input = mm::capture::replay({o.scenario, options.overrides, o.agent, *o.at});
   std::ofstream file(o.save);
   file << mm::capture::to_json(input).dump(1) << "\n";
@@ -92,7 +81,7 @@ int capture(const capture_options& o) {
   const bool summary = o.summary;
   const double from = o.from;
   mm::sim::simulation sim(mm::scenario_file::load(o.scenario, options).scenario, mm::capture::every_core());
-  if (!agent.empty()) check_agent(sim, o);
+  if (!agent.empty()) mm::capture::check_planning_vehicle(sim, o.agent, o.scenario);
   std::map<std::size_t, strongest> by_interacting;
   std::size_t plans = 0;
   if (!summary) std::printf("t_s,agent,obstacles,relevant,interacting,min_room,mode,cpu_us\n");

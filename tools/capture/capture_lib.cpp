@@ -23,6 +23,17 @@ sim::run_options every_core() {
   return run;
 }
 
+void check_planning_vehicle(const sim::simulation& sim, const std::string& agent, const std::string& scenario) {
+  const auto id = sim.find(agent);
+  if (id && *id < sim.planning_vehicle_count()) return;
+  std::string names;
+  for (sim::agent_id i = 0; i < sim.planning_vehicle_count(); ++i) {
+    names += (names.empty() ? "" : ", ") + sim.info(i).name;
+  }
+  throw std::runtime_error("--agent " + agent + ": no planning vehicle of that name in " + scenario +
+                           " (expected one of: " + names + ")");
+}
+
 interaction_count count_interactions(const plan_input& input) {
   interaction_count count;
   const plan_result all = plan(input);

@@ -6,6 +6,8 @@
 //   valgrind --tool=callgrind --toggle-collect='*plan_repeatedly*' maneuvermap_replan FILE.json --repeat 1
 //
 // (the count of the `plan_repeatedly` frame, divided by N, is what docs/performance.md reports).
+// --reference prints the reference planner's result instead (maneuvermap_scenario_accuracy finds
+// the inputs on which the two differ most).
 // --fields N builds the clearance field of every relevant obstacle N times and prints its mean time.
 #include <chrono>
 #include <climits>
@@ -17,6 +19,7 @@
 #include "mm/collision_sets.hpp"
 #include "mm/maneuver_samples.hpp"
 #include "mm/plan_input_json.hpp"
+#include "mm/reference_planner.hpp"
 #include "mm/tool_cli.hpp"
 
 namespace {
@@ -70,7 +73,7 @@ void time_fields(const mm::plan_input& input, const mm::plan_result& r, int coun
   }
 }
 
-int replan(const std::string& path, int repeat, int fields, bool keep_planner) {
+int replan(const std::string& path, int repeat, int fields, bool keep_planner, bool reference) {
   std::ifstream file(path);
   if (!file) throw std::runtime_error(path + ": cannot read the file");
   mm::plan_input input;
@@ -81,7 +84,7 @@ int replan(const std::string& path, int repeat, int fields, bool keep_planner) {
                              " (expected a planning input saved by maneuvermap_capture --save)");
   }
   if (repeat > 0) plan_repeatedly(input, repeat, keep_planner);
-  const mm::plan_result r = mm::plan(input);
+  const mm::plan_result r = reference ? mm::plan_reference(input) : mm::plan(input);
   if (!r.ok()) throw std::runtime_error(path + ": " + r.error);
   std::printf("forecast_time %.3f family %s command %.6f %.6f mode %s\n", r.forecast_time,
               std::string(mm::to_string(r.selected_family)).c_str(), r.command.acceleration, r.command.curvature,
@@ -93,7 +96,7 @@ int replan(const std::string& path, int repeat, int fields, bool keep_planner) {
     std::printf("tau %.3f mi_brake %.4f mi_accelerate %.4f%s\n", r.forecast_times[i], r.mi_brake[i], r.mi_accelerate[i],
                 r.excluded[i] ? " excluded" : "");
   }
-  if (fields > 0) time_fields(input, r, fields);
+  if (fields > 0) time_fields(input, reference ? mm::plan(input) : r, fields);
   return 0;
 }
 
@@ -120,5 +123,9 @@ int main(int argc, char** argv) {
   app.add_flag("--planner", keep_planner,
                "Plan the --repeat times with one mm::planner, as a vehicle planning every step does, instead of "
                "mm::plan from scratch");
-  return mm::tool_cli::run(app, argc, argv, [&] { return replan(path, repeat, fields, keep_planner); });
+  bool reference = false;
+  app.add_flag("--reference", reference,
+               "Print the reference planner's result (mm::plan_reference at its default resolution, spec §11) "
+               "instead of the fast planner's");
+  return mm::tool_cli::run(app, argc, argv, [&] { return replan(path, repeat, fields, keep_planner, reference); });
 }

@@ -21,6 +21,10 @@ struct interaction_count {
 /// (`sim::run_options::jobs`), only how long it takes.
 sim::run_options every_core();
 
+/// Throws std::runtime_error when `agent` is not a planning vehicle of `sim` (of `scenario`), naming
+/// the option (--agent) and the planning vehicles there are.
+void check_planning_vehicle(const sim::simulation& sim, const std::string& agent, const std::string& scenario);
+
 /// Counts the relevant and the interacting obstacles of `input` (one extra plan per relevant obstacle).
 interaction_count count_interactions(const plan_input& input);
 

@@ -1,0 +1,38 @@
+#include "mm/plan_comparison.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+namespace mm::plan_comparison {
+
+index_difference largest_index_difference(const plan_result& fast, const plan_result& reference) {
+  const std::size_t n = reference.forecast_times.size();
+  if (fast.mi_brake.size() != n || fast.mi_accelerate.size() != n || reference.mi_brake.size() != n ||
+      reference.mi_accelerate.size() != n) {
+    throw std::invalid_argument("largest_index_difference: both plans need the map column of every forecast time "
+                                "(config.map_column)");
+  }
+  index_difference worst;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double brake = std::abs(fast.mi_brake[i] - reference.mi_brake[i]);
+    const double accelerate = std::abs(fast.mi_accelerate[i] - reference.mi_accelerate[i]);
+    if (brake > worst.value) worst = {brake, i, family::brake};
+    if (accelerate > worst.value) worst = {accelerate, i, family::accelerate};
+  }
+  return worst;
+}
+
+double forecast_time_margin(const plan_result& r) {
+  std::vector<double> rooms;
+  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+    if (!r.excluded[i]) rooms.push_back(std::max(r.mi_brake[i], r.mi_accelerate[i]));
+  }
+  std::sort(rooms.rbegin(), rooms.rend());
+  return rooms.size() < 2 ? 1.0 : rooms[0] - rooms[1];
+}
+
+double family_margin(const plan_result& r) { return std::abs(r.mi_brake_selected - r.mi_accelerate_selected); }
+
+}  // namespace mm::plan_comparison
