@@ -675,6 +675,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   distance_rate_ = sweep.largest_point_speed() + obstacle_turn_speed_;
   // Minima up to half a step's change above the cap can still refine to below it: walk exactly to there.
   walk_cap_ = cap + distance_rate_ * step / 2.0;
+  band_ = refinement_threshold(distance_rate_, step);
   reach_ = bounding_radius(sweep.ego().shape) + obstacle_radius + rounding_slack;
   centre_rate_ = sweep.largest_speed() + motion.speed;
   centre_steps_ = closing_at(centre_rate_, step).steps_per_metre;
@@ -743,7 +744,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   const auto out_of_reach = [&](std::size_t k, const obstacle_at& o) {
     const double gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
     if (gap < walk_cap_) near = true;
-    return gap > 0.0;
+    return gap > band_;
   };
   const std::vector<std::uint32_t>& order = sweep.order();
   std::optional<raster_scratch> own_scratch;
@@ -791,6 +792,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       // No sample time of its own before the straight part, which reads and marks only the hits:
       // the waiting lists (a link per block) need not be copied.
       own.hit = shared.hit;
+      own.near = shared.near;
       own.hit_at = shared.hit_at;
     }
     // The straight part: how close the obstacle comes to the disc that holds every sample's
@@ -811,6 +813,20 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     own.hit.for_each([&](std::size_t p) {
       sampled_[i].set(order[p]);
       if (record) first_overlap_[i][order[p]] = own.hit_at[p];
+    });
+    // The samples that came within θ of the obstacle at a sample time before the straight part
+    // without overlapping it there can touch it between sample times: they collide where their
+    // exact clearance (the sampled minimum refined around its time) is ≤ 0. Recording, the contact is
+    // put at the sampled minimum's time.
+    own.near.for_each([&](std::size_t p) {
+      if (own.hit.test(p)) return;  // it overlaps at a sample time, or on the straight part
+      const std::size_t m = order[p];
+      if (!(exact(i, m) <= 0.0)) return;
+      sampled_[i].set(m);
+      if (record) {
+        const bool walked = !argmin_.empty() && !argmin_[i].empty() && argmin_[i][m] != none;
+        first_overlap_[i][m] = walked ? times[argmin_[i][m]] : part_start_[i];
+      }
     });
   }
   if (!near) {
@@ -845,6 +861,7 @@ void clearance_field::raster(std::size_t k, const obstacle_at& o, raster_state& 
 
 void clearance_field::raster_state::reset(std::size_t samples, std::size_t times, std::size_t blocks, bool record) {
   hit.clear(samples);
+  near.clear(samples);
   head.assign(times, none);
   if (link.size() < blocks) link.resize(blocks);
   if (record) {
@@ -900,7 +917,11 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   const double step = sweep_.window().time_step;
   const ego_sweep::placement p = sweep_.at(k, b.centre);
   const bool single = b.second == 0;
+  const bool record = !state.hit_at.empty();
   const double spread = single ? 0.0 : sweep_.block_spread(b, k);
+  // What a test looks for besides an overlap: a sample within its θ (a block: within the largest θ).
+  // A sample already near is looked at again only where it can overlap.
+  const double band = !single ? band_ : state.near.test(b.begin) ? 0.0 : sample_threshold(b.centre);
   ++work_.bound_checks;
   // The first time at which a gap [m] above zero can close, from the largest rates over the window.
   const auto until = [&](double gap, bool centres) {
@@ -910,9 +931,9 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   // Every sample of the block is within `spread` of the centre's placement: its signed distance −
   // margin lies in [low − spread, high + spread], with low and high bounds of the centre's.
   const vec2 apart = p.position - o.at.position;
-  if (!surely_closer(apart, reach_ + margin + spread, 0.0)) {
+  if (!surely_closer(apart, reach_ + margin + spread + band, 0.0)) {
     const double centres = norm(apart);
-    const double disc = centres - reach_ - margin - spread;
+    const double disc = centres - reach_ - margin - spread - band;
     if (disc > 0.0) {
       std::size_t next = until(disc, true);
       if (next < k + second_order_steps) {
@@ -940,7 +961,7 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     const double face = face_separation(ego_rectangle, o.rectangle);
     // Apart, the exact distance where the margin can still make it (or the whole block) overlap.
     const clearance_bounds c =
-        rectangle_bounds(face, margin, single ? face - margin - rounding_slack <= 0.0 : face + spread < margin,
+        rectangle_bounds(face, margin, single ? face - margin - rounding_slack <= band : face + spread < margin,
                          [&] { return corner_distance(ego_rectangle, o.rectangle); });
     low = c.low;
     high = c.high;
@@ -956,23 +977,25 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
   // overlaps (no wait passes a time at which one of its samples can). A block whose samples were
   // tested one by one (`raster_samples`) waits with some of them hit already: those keep their time.
   const auto mark_all = [&] {
-    const bool record = !state.hit_at.empty();
     for (std::size_t q = b.begin; q < b.end; ++q) {
       if (record && !state.hit.test(q)) state.hit_at[q] = sweep_.times()[k];
       state.hit.set(q);
     }
   };
   if (single) {
-    // A single sample: `clearance_at` ≤ 0, bit for bit.
+    // A single sample: `clearance_at` ≤ 0, or ≤ θ, bit for bit.
     if (high <= 0.0) {
       mark_all();
-    } else {
+    } else if (high <= band) {
+      state.near.set(b.begin);
       state.wait(until(low, false), index);
+    } else {
+      state.wait(until(low - band, false), index);
     }
     return;
   }
-  if (low - spread > 0.0) {
-    state.wait(until(low - spread, false), index);
+  if (low - spread > band) {
+    state.wait(until(low - spread - band, false), index);
   } else if (high + spread + rounding_slack <= 0.0) {
     mark_all();
   } else if (state.hit_at.empty() && overlaps_whole_ahead(b, k, state)) {
@@ -996,22 +1019,28 @@ void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const p
   face_separation_of_each(n, p.x, p.y, p.c, p.s, ego_half_, o.rectangle, face.data());
   const double margin = sweep_.window().margin;
   const bool record = !state.hit_at.empty();
-  // The block waits until the smallest gap of its clear samples can close at the largest rate L.
+  const std::vector<std::uint32_t>& order = sweep_.order();
+  // The block waits until the smallest gap of its clear samples (to their θ, or to an overlap) can
+  // close at the largest rate L.
   double gap = std::numeric_limits<double>::infinity();
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t q = b.begin + i;
     if (state.hit.test(q)) continue;
     ++work_.bound_checks;
-    // A single sample's test in `raster_block`: `clearance_at` ≤ 0, bit for bit.
-    const clearance_bounds c = rectangle_bounds(face[i], margin, face[i] - margin - rounding_slack <= 0.0, [&] {
+    // A single sample's test in `raster_block`: `clearance_at` ≤ 0, or ≤ θ, bit for bit.
+    const double band = state.near.test(q) ? 0.0 : sample_threshold(order[q]);
+    const clearance_bounds c = rectangle_bounds(face[i], margin, face[i] - margin - rounding_slack <= band, [&] {
       const placed_rectangle ego{{p.x[i], p.y[i]}, {p.c[i], p.s[i]}, ego_half_.x, ego_half_.y};
       return corner_distance(ego, o.rectangle);
     });
     if (c.high <= 0.0) {
       state.hit.set(q);
       if (record) state.hit_at[q] = sweep_.times()[k];
-    } else {
+    } else if (c.high <= band) {
+      state.near.set(q);
       gap = std::min(gap, c.low);
+    } else {
+      gap = std::min(gap, c.low - band);
     }
   }
   if (gap != std::numeric_limits<double>::infinity()) {
@@ -1539,8 +1568,12 @@ std::vector<double> first_overlaps_reference(const ego_state& ego, const maneuve
   std::vector<double> first(samples.size(), no_collision);
   for (std::size_t m = 0; m < samples.size(); ++m) {
     const maneuver& u = samples.maneuvers[m];
+    const auto at = [&](double t) { return clearance_at(ego, u, obstacle, forecast_time, t, window); };
+    running_minimum r;
     for (std::size_t k = 0; k < sampled; ++k) {
-      if (clearance_at(ego, u, obstacle, forecast_time, times[k], window) <= 0.0) {
+      const double c = at(times[k]);
+      r.update(c, k);
+      if (c <= 0.0) {
         first[m] = times[k];
         break;
       }
@@ -1550,6 +1583,17 @@ std::vector<double> first_overlaps_reference(const ego_state& ego, const maneuve
     if (straight_part_collides(ego.shape, part.ego, obstacle.shape, part.obstacle, part.motion, window.margin)) {
       first[m] = start + straight_part_contact(ego.shape, part.ego, obstacle.shape, part.obstacle, part.motion,
                                                window.margin);
+      continue;
+    }
+    // Within θ at a sample time: a contact between sample times where the refined minimum is ≤ 0
+    // (refined where `clearance_field::exact` refines: below the straight part's minimum + 2θ).
+    const double theta = refinement_threshold(
+        largest_point_speed(ego, u, window.horizon) + largest_point_speed(obstacle), window.time_step);
+    if (sampled == 0 || !(r.value <= theta)) continue;
+    const double straight =
+        straight_part_minimum(ego.shape, part.ego, obstacle.shape, part.obstacle, part.motion).distance - window.margin;
+    if (r.value < straight + 2.0 * theta && refined_minimum(times, r.argmin, at, r.at_argmin) <= 0.0) {
+      first[m] = times[r.argmin];
     }
   }
   return first;

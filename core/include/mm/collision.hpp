@@ -93,19 +93,19 @@ inline constexpr double refinement_grid = 64.0;
 
 /// The continuous-time minimum of a signed clearance sampled at `times`, refined around the argmin
 /// `k` of its samples (`running_minimum`), where it takes `at_sample` = at(t_k) [m]: Brent's search
-/// for the minimum of `at(t)` on [t_{k−1}, t_{k+1}] — a parabola through the three best points
+/// for the minimum of `at(t)` on [t_{k−1}, t_{k+1}] ([t_0, t_1] at the window's start) — a parabola through the three best points
 /// where it moves the bracket fast enough, a golden-section step where it does not — until the
 /// minimum is bracketed to a grid step, at most `max_evaluations` calls. Every point is rounded to
 /// a grid of `refinement_grid` steps across the bracket, so that two scenes equal up to rounding
 /// (one moved or mirrored) are evaluated at the same times and refine to the same value. The
 /// result is the smallest value seen, `at_sample` included: a value the clearance really takes, so
-/// never below the true minimum. At the window's ends, `at_sample`.
+/// never below the true minimum. At the window's end, `at_sample`.
 template <class At>
 double refined_minimum(std::span<const double> times, std::size_t k, At&& at, double at_sample,
                        int max_evaluations = 16) {
-  if (k == 0 || k + 1 >= times.size()) return at_sample;
+  if (k + 1 >= times.size()) return at_sample;
   constexpr double golden = 0.3819660112501051;  // (3 − √5)/2
-  const double origin = times[k - 1];
+  const double origin = times[k == 0 ? 0 : k - 1];
   const double grid = (times[k + 1] - origin) / refinement_grid;
   const double tolerance = grid;
   const auto on_grid = [&](double t) { return origin + std::round((t - origin) / grid) * grid; };

@@ -397,7 +397,8 @@ class clearance_field {
   /// +cap otherwise.
   const clearance_set& set(std::size_t i) const { return materialized(slot(i)); }
   /// The samples that overlap the obstacle forecast with forecast time i at a sample time before
-  /// the straight part or at any time of it: `collisions_reference`.
+  /// the straight part or at any time of it, or touch it between sample times before it (their
+  /// exact clearance is ≤ 0 and they came within θ at a sample time): `collisions_reference`.
   const sample_mask& collisions(std::size_t i) const { return sampled_[slot(i)]; }
   bool is_exact(std::size_t i, std::size_t m) const {
     const std::vector<std::uint8_t>& e = exact_[slot(i)];
@@ -492,7 +493,11 @@ class clearance_field {
   /// own is in no list).
   struct raster_state {
     static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+    /// The samples that overlapped at a sample time (or on the straight part).
     sample_mask hit;
+    /// The samples that came within their refinement threshold θ of the obstacle at a sample time
+    /// without overlapping it then: they may touch it between sample times (tree order).
+    sample_mask near;
     std::vector<std::uint32_t> head;  ///< [k]: first block waiting for time index k
     std::vector<std::uint32_t> link;  ///< [block]: the next in the same list (read only for blocks in a list)
     std::vector<double> hit_at;  ///< [position in tree order]: time of the first overlap [s] (read only where hit; empty when not recorded)
@@ -605,6 +610,9 @@ class clearance_field {
   double distance_rate_;  ///< L: Lipschitz constant of the signed distance [m/s]
   double centre_steps_;    ///< 1 / (centre_rate_ · time step) [1/m]: sample steps a gap of 1 m needs to close
   double distance_steps_;  ///< 1 / (distance_rate_ · time step) [1/m]
+  /// θ of the fastest sample, refinement_threshold(L, step) [m]: no sample that stays farther than
+  /// this at two neighbouring sample times can touch the obstacle between them.
+  double band_ = 0.0;
   bool inert_ = false;
   bool independent_ = false;
   std::vector<obstacle_at> turning_;         ///< [k]: CTRV placement at t_k, shared by every τ ≥ t_k (every τ when ω = 0)
@@ -670,7 +678,10 @@ double straight_part_start(const forecast_obstacle& obstacle, double forecast_ti
 /// The collision sets of one obstacle for every forecast time, by brute force (the reference for
 /// `clearance_field::collisions`): mask i holds the samples whose signed distance − margin under
 /// `forecast_times[i]` is ≤ 0 at some sample time before `straight_part_start`, or whose
-/// `smallest_signed_distance` − margin over the straight part is ≤ 0.
+/// `smallest_signed_distance` − margin over the straight part is ≤ 0, or — a contact between
+/// sample times — whose smallest signed distance − margin at those sample times is at most their θ
+/// (`refinement_threshold` of the sample's and the obstacle's largest point speeds) and whose
+/// `refined_minimum` around it is ≤ 0.
 std::vector<sample_mask> collisions_reference(const ego_state& ego, const maneuver_samples& samples,
                                               const forecast_obstacle& obstacle, std::span<const double> forecast_times,
                                               const collision_window& window);
@@ -678,7 +689,8 @@ std::vector<sample_mask> collisions_reference(const ego_state& ego, const maneuv
 /// The reference for `clearance_field::first_overlap`, by brute force: entry [m] is the first sample
 /// time before the straight part at which sample m's signed distance − margin to the obstacle
 /// forecast with `forecast_time` is ≤ 0, else its first such time on the straight part
-/// (`first_contact`), else `no_collision` [s].
+/// (`first_contact`), else, for a contact between sample times (`collisions_reference`), the
+/// sample time of the sampled minimum, else `no_collision` [s].
 std::vector<double> first_overlaps_reference(const ego_state& ego, const maneuver_samples& samples,
                                              const forecast_obstacle& obstacle, double forecast_time,
                                              const collision_window& window);
