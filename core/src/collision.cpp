@@ -39,17 +39,6 @@ bool overlaps_at(const ego_state& ego, const maneuver& u, const forecast_obstacl
   return check_overlap(ego, u, obstacle, forecast_time, t, window).overlaps;
 }
 
-/// The first time of overlap in (free, hit] to 1e-4 s, by bisection: none at `free`, one at `hit`
-/// (the obstacle forecast with its CTRV motion for the whole window).
-double bisected_collision(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
-                          const collision_window& window, double free, double hit) {
-  while (hit - free > 1e-4) {
-    const double mid = 0.5 * (free + hit);
-    (overlaps_at(ego, nominal, obstacle, window.duration, mid, window) ? hit : free) = mid;
-  }
-  return hit;
-}
-
 /// Sample times after index k that the bounding discs, `squared_distance` [m²] apart in their
 /// centres at t_k, cannot close: the centres approach at most at `rate` [m/s] (lowered by a
 /// rounding slack; the grid's steps are ≤ time_step).
@@ -284,34 +273,50 @@ bool verified_collision_free_reference(const ego_state& ego, const maneuver& u, 
   }
 }
 
+namespace {
+
+/// Signed distance − margin [m] of the ego holding `nominal` and the obstacle following its CTRV
+/// forecast for the whole window, at time t [s].
+double nominal_clearance(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle, double t,
+                         const collision_window& window) {
+  const pose ego_pose = maneuver_pose(ego.pose, ego.speed, nominal, t, window.horizon, ego.limits.speed_cap);
+  const pose obstacle_pose = forecast_pose(obstacle.motion, window.duration, t);
+  return signed_distance(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose)) - window.margin;
+}
+
+/// The sum of both footprints' largest point speeds under `nominal` [m/s]: how fast their signed
+/// distance can change.
+double nominal_rate(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
+                    const collision_window& window) {
+  return largest_speed(ego, nominal, window.horizon) * (1.0 + std::abs(nominal.curvature) * bounding_radius(ego.shape)) +
+         obstacle.motion.speed + std::abs(obstacle.motion.yaw_rate) * bounding_radius(obstacle.shape);
+}
+
+}  // namespace
+
 double time_to_collision(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
                          const collision_window& window) {
-  const sample_grid times = sample_grid_of(window.duration, window.time_step);
-  const double reach = bounding_radius(ego.shape) + bounding_radius(obstacle.shape) + window.margin;
-  // The reference points' distance changes no faster than the sum of their largest speeds, so from
-  // a time at which the bounding discs are apart by `gap` none can overlap for gap / rate.
-  const double rate = largest_speed(ego, nominal, window.horizon) + std::abs(obstacle.motion.speed);
-  for (std::size_t k = 0; k < times.count;) {
-    const double t = times.at(k);
-    const overlap_check at = check_overlap(ego, nominal, obstacle, window.duration, t, window);
-    if (at.overlaps) {
-      if (t == 0.0) return 0.0;
-      return bisected_collision(ego, nominal, obstacle, window, times.at(k - 1), t);
-    }
-    k += times_apart(at.squared_distance, reach, rate, times.count, window) + 1;
+  const double rate = nominal_rate(ego, nominal, obstacle, window);
+  double t = 0.0;
+  while (t <= window.duration) {
+    const double clearance = nominal_clearance(ego, nominal, obstacle, t, window);
+    if (clearance <= 0.0) return t;
+    if (!(rate > 0.0)) return no_collision;  // neither moves
+    // No contact before t + clearance / rate; a step below the resolution is a contact within
+    // rate × resolution, counted as one.
+    const double step = clearance / rate * (1.0 - 1e-9);
+    if (step < time_to_collision_resolution) return t;
+    t += step;
   }
   return no_collision;
 }
 
 double time_to_collision_reference(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
                                    const collision_window& window) {
-  double previous = 0.0;
-  for (const double t : sample_times(window.duration, window.time_step)) {
-    if (overlaps_at(ego, nominal, obstacle, window.duration, t, window)) {
-      if (t == 0.0) return 0.0;
-      return bisected_collision(ego, nominal, obstacle, window, previous, t);
-    }
-    previous = t;
+  const auto steps = static_cast<std::size_t>(std::ceil(window.duration / time_to_collision_resolution));
+  for (std::size_t k = 0; k <= steps; ++k) {
+    const double t = std::min(window.duration, static_cast<double>(k) * time_to_collision_resolution);
+    if (nominal_clearance(ego, nominal, obstacle, t, window) <= 0.0) return t;
   }
   return no_collision;
 }

@@ -565,6 +565,13 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     assignment[0] = adjustable_forecast_index(mi_brake, mi_accelerate, result.excluded);
   } else if (n > 1) {
     if (options.assignment_search == assignment_search_kind::exhaustive) {
+      // An obstacle that does not turn (ω = 0) has the same forecast under every τ: assignments that
+      // differ only in its forecast time have the same room, and the tie rule (the smallest index
+      // vector) puts it at τ = 0. Searching that alone gives the same result (eight pedestrians:
+      // one assignment instead of 17⁸).
+      for (std::size_t j = 0; j < n; ++j) {
+        if (relevant[j].motion.yaw_rate == 0.0) problem.candidates[j] = {0};
+      }
       const std::size_t count = assignment_count(problem);
       if (count > config.max_exhaustive_assignments) {
         return invalid("config.max_exhaustive_assignments = " + std::to_string(config.max_exhaustive_assignments) +

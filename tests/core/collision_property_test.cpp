@@ -1,4 +1,4 @@
-// The time to collision that skips provably free sample times, the first collision times and the
+// The time to collision by conservative advancement, the first collision times and the
 // continuous-time proof, against their references (spec §11).
 #include "mm/collision.hpp"
 
@@ -6,7 +6,12 @@
 
 #include <cstdint>
 #include <random>
+#include <string>
 
+#include "mm/collision_sets.hpp"
+#include "mm/footprint.hpp"
+#include "mm/forecast.hpp"
+#include "mm/maneuver.hpp"
 #include "mm/planner.hpp"
 #include "property.hpp"
 #include "random_scenes.hpp"
@@ -14,9 +19,11 @@
 namespace mm {
 namespace {
 
-TEST(collision, time_to_collision_equals_its_reference_bit_for_bit_on_random_scenes) {
+TEST(collision, time_to_collision_is_never_after_a_contact_of_its_reference_and_always_at_one) {
+  // The reference scans the window every 10⁻⁴ s: the conservative advancement never passes an
+  // overlap it sees, and where it stops the two are within L × 10⁻⁴ m (they touch, or graze).
   std::mt19937_64 rng(testing::property_seed() + 29);
-  const std::size_t count = testing::property_count(200);
+  const std::size_t count = testing::property_count(100);
   std::uniform_real_distribution<double> acceleration(-7.0, 3.0);
   std::uniform_real_distribution<double> curvature(-0.1, 0.1);
   std::size_t collisions = 0;
@@ -29,9 +36,17 @@ TEST(collision, time_to_collision_equals_its_reference_bit_for_bit_on_random_sce
       const forecast_obstacle obstacle{estimate_motion(track, in.config.history_window, in.time), track.shape};
       const double fast = time_to_collision(in.ego, nominal, obstacle, window);
       const double reference = time_to_collision_reference(in.ego, nominal, obstacle, window);
-      ASSERT_EQ(fast, reference) << "trial " << trial << " obstacle " << track.id << " nominal (" << nominal.acceleration
-                                 << ", " << nominal.curvature << ")\n"
-                                 << testing::describe(in);
+      const std::string what = "trial " + std::to_string(trial) + " obstacle " + std::to_string(track.id) +
+                               " nominal (" + std::to_string(nominal.acceleration) + ", " +
+                               std::to_string(nominal.curvature) + ")\n" + testing::describe(in);
+      ASSERT_LE(fast, reference) << what;
+      if (fast != no_collision) {
+        const pose e = maneuver_pose(in.ego.pose, in.ego.speed, nominal, fast, window.horizon, in.ego.limits.speed_cap);
+        const pose o = forecast_pose(obstacle.motion, window.duration, fast);
+        const double clearance = signed_distance(place(in.ego.shape, e), place(obstacle.shape, o)) - window.margin;
+        const double rate = largest_point_speed(in.ego, nominal, window.horizon) + largest_point_speed(obstacle);
+        ASSERT_LE(clearance, rate * time_to_collision_resolution) << what;
+      }
       collisions += reference != no_collision ? 1 : 0;
     }
   }
