@@ -58,6 +58,18 @@ double largest_speed(const ego_state& ego, const maneuver& u, double horizon) {
   return std::max(std::min(ego.speed, cap), speed_after(ego.speed, u.acceleration, horizon, cap));
 }
 
+double largest_point_speed(double largest_speed, double curvature, double radius) {
+  return largest_speed * (1.0 + std::abs(curvature) * radius);
+}
+
+double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon) {
+  return largest_point_speed(largest_speed(ego, u, horizon), u.curvature, bounding_radius(ego.shape));
+}
+
+double largest_point_speed(const forecast_obstacle& obstacle) {
+  return obstacle.motion.speed + std::abs(obstacle.motion.yaw_rate) * bounding_radius(obstacle.shape);
+}
+
 namespace {
 
 /// The times of `sample_times(duration, step)` without the list: how many, and the k-th [s].
@@ -284,19 +296,12 @@ double nominal_clearance(const ego_state& ego, const maneuver& nominal, const fo
   return signed_distance(place(ego.shape, ego_pose), place(obstacle.shape, obstacle_pose)) - window.margin;
 }
 
-/// The sum of both footprints' largest point speeds under `nominal` [m/s]: how fast their signed
-/// distance can change.
-double nominal_rate(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
-                    const collision_window& window) {
-  return largest_speed(ego, nominal, window.horizon) * (1.0 + std::abs(nominal.curvature) * bounding_radius(ego.shape)) +
-         obstacle.motion.speed + std::abs(obstacle.motion.yaw_rate) * bounding_radius(obstacle.shape);
-}
-
 }  // namespace
 
 double time_to_collision(const ego_state& ego, const maneuver& nominal, const forecast_obstacle& obstacle,
                          const collision_window& window) {
-  const double rate = nominal_rate(ego, nominal, obstacle, window);
+  // How fast their signed distance can change.
+  const double rate = largest_point_speed(ego, nominal, window.horizon) + largest_point_speed(obstacle);
   double t = 0.0;
   while (t <= window.duration) {
     const double clearance = nominal_clearance(ego, nominal, obstacle, t, window);

@@ -502,18 +502,6 @@ void ego_sweep::fill(std::size_t k, std::size_t m) const {
   local_known_[index] = local_generation_;
 }
 
-double largest_point_speed(double largest_speed, double curvature, double radius) {
-  return largest_speed * (1.0 + std::abs(curvature) * radius);
-}
-
-double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon) {
-  return largest_point_speed(largest_speed(ego, u, horizon), u.curvature, bounding_radius(ego.shape));
-}
-
-double largest_point_speed(const forecast_obstacle& obstacle) {
-  return obstacle.motion.speed + std::abs(obstacle.motion.yaw_rate) * bounding_radius(obstacle.shape);
-}
-
 double refinement_threshold(double rate, double time_step) { return 0.5 * rate * time_step * (1.0 + 1e-9) + 1e-12; }
 
 namespace {

@@ -26,6 +26,7 @@
 #include "mm/scenario_file/loader.hpp"
 #include "mm/sim/simulation.hpp"
 #include "mm/capture.hpp"
+#include "mm/scenario_options.hpp"
 #include "mm/plan_input_json.hpp"
 #include "mm/tool_cli.hpp"
 
@@ -39,25 +40,13 @@ struct strongest {
 };
 
 /// The command line; the defaults are the tool's.
-struct capture_options {
-  std::string scenario;
-  std::string agent;
-  std::vector<std::string> overrides;
+struct capture_options : mm::capture::scenario_options {
   std::size_t every = 1;
   double from = 0.0;
   std::optional<double> at;
   std::string save;
   bool summary = false;
 };
-
-CLI::Validator parameter_override() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        if (mm::scenario_file::parse_override(text)) return {};
-        return "expected NAME=VALUE with a finite number VALUE, got '" + text + "'";
-      },
-      "");
-}
 
 /// --save: writes the planning input of the agent at --at as JSON.
 int save_input(const capture_options& o, const mm::scenario_file::load_options& options) {
@@ -73,8 +62,7 @@ int save_input(const capture_options& o, const mm::scenario_file::load_options& 
 }
 
 int capture(const capture_options& o) {
-  mm::scenario_file::load_options options;
-  for (const std::string& text : o.overrides) options.overrides.push_back(*mm::scenario_file::parse_override(text));
+  const mm::scenario_file::load_options options = o.load_options();
   if (!o.save.empty()) return save_input(o, options);
   const std::string& agent = o.agent;
   const std::size_t every = o.every;
@@ -126,14 +114,7 @@ int main(int argc, char** argv) {
   app.footer("Forms:\n"
              "  maneuvermap_capture SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K] [--from T] [--summary]\n"
              "  maneuvermap_capture SCENARIO --agent NAME [--set NAME=VALUE]... --at T --save FILE.json");
-  app.add_option("SCENARIO", o.scenario, "Scenario file, or the name of a built-in scenario (maneuvermap list)")
-      ->required()
-      ->type_name("FILE|NAME");
-  app.add_option("--agent", o.agent, "Only the plans of this planning vehicle")->type_name("NAME");
-  app.add_option("--set", o.overrides, "Override a parameter of the scenario: NAME=VALUE (repeatable)")
-      ->check(parameter_override())
-      ->allow_extra_args(false)
-      ->type_name("NAME=VALUE");
+  mm::capture::add_scenario_options(app, o);
   CLI::Option* every =
       cli::add_whole(app, "--every", o.every, 1, cli::unbounded, "Print every K-th plan only (>= 1)", "K");
   CLI::Option* from =

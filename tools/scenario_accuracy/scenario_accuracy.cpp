@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "mm/capture.hpp"
+#include "mm/scenario_options.hpp"
 #include "mm/plan_comparison.hpp"
 #include "mm/reference_planner.hpp"
 #include "mm/scenario_file/loader.hpp"
@@ -34,10 +35,7 @@ namespace {
 namespace pc = mm::plan_comparison;
 
 /// The command line; the defaults are the tool's.
-struct options {
-  std::string scenario;
-  std::string agent;
-  std::vector<std::string> overrides;
+struct options : mm::capture::scenario_options {
   std::size_t every = 1;
   double from = 0.0;
   std::optional<double> until;
@@ -142,8 +140,7 @@ double quantile(const std::vector<double>& sorted, double q) {
 }
 
 int measure(const options& o) {
-  mm::scenario_file::load_options load;
-  for (const std::string& text : o.overrides) load.overrides.push_back(*mm::scenario_file::parse_override(text));
+  const mm::scenario_file::load_options load = o.load_options();
   mm::sim::simulation sim(mm::scenario_file::load(o.scenario, load).scenario, mm::capture::every_core());
   if (!o.agent.empty()) mm::capture::check_planning_vehicle(sim, o.agent, o.scenario);
   std::vector<comparison> plans;
@@ -240,15 +237,6 @@ int measure(const options& o) {
   return o.check && broken ? 1 : 0;
 }
 
-CLI::Validator parameter_override() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        if (mm::scenario_file::parse_override(text)) return {};
-        return "expected NAME=VALUE with a finite number VALUE, got '" + text + "'";
-      },
-      "");
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -259,14 +247,7 @@ int main(int argc, char** argv) {
                "times and families, and whether the forecast time and the family agree where the reference's best\n"
                "candidate leads by more than the bound.\n",
                "maneuvermap_scenario_accuracy"};
-  app.add_option("SCENARIO", o.scenario, "Scenario file, or the name of a built-in scenario (maneuvermap list)")
-      ->required()
-      ->type_name("FILE|NAME");
-  app.add_option("--agent", o.agent, "Only the plans of this planning vehicle")->type_name("NAME");
-  app.add_option("--set", o.overrides, "Override a parameter of the scenario: NAME=VALUE (repeatable)")
-      ->check(parameter_override())
-      ->allow_extra_args(false)
-      ->type_name("NAME=VALUE");
+  mm::capture::add_scenario_options(app, o);
   cli::add_whole(app, "--every", o.every, 1, cli::unbounded, "Compare every K-th plan only (>= 1)", "K");
   cli::add_real(app, "--from", o.from, cli::real_bound::non_negative, "s",
                 "Compare only plans from this time on [s] (>= 0)", "T");

@@ -32,6 +32,17 @@ inline constexpr double no_collision = std::numeric_limits<double>::infinity();
 /// of the start speed and the speed at T_h (the speed is monotonic in t, then constant).
 double largest_speed(const ego_state& ego, const maneuver& u, double horizon);
 
+/// Largest speed [m/s] of any point of the ego footprint executing `u` over the window:
+/// v_max (1 + |κ| R).
+double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon);
+
+/// The same from the reference point's largest speed [m/s], the curvature [1/m] and the footprint's
+/// bounding radius [m]: v_max (1 + |κ| R).
+double largest_point_speed(double largest_speed, double curvature, double radius);
+
+/// Largest speed [m/s] of any point of the obstacle's footprint under any forecast: v + |ω| R.
+double largest_point_speed(const forecast_obstacle& obstacle);
+
 /// The sample times k·step, k = 0..K, of [0, duration], the last one equal to `duration`.
 std::vector<double> sample_times(double duration, double step);
 

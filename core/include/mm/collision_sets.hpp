@@ -36,17 +36,6 @@ double clearance_at(const ego_state& ego, const maneuver& u, const forecast_obst
 /// and, next to a colliding sample, by this value (docs/method.md §4.4).
 using clearance_set = std::vector<double>;
 
-/// Largest speed [m/s] of any point of the ego footprint executing `u` over the window:
-/// v_max (1 + |κ| R).
-double largest_point_speed(const ego_state& ego, const maneuver& u, double horizon);
-
-/// The same from the reference point's largest speed [m/s], the curvature [1/m] and the footprint's
-/// bounding radius [m]: v_max (1 + |κ| R).
-double largest_point_speed(double largest_speed, double curvature, double radius);
-
-/// Largest speed [m/s] of any point of the obstacle's footprint under any forecast: v + |ω| R.
-double largest_point_speed(const forecast_obstacle& obstacle);
-
 /// Most the signed distance of a pair whose points move at most at `rate` [m/s] (the sum of both
 /// footprints' largest point speeds) can fall between a time and the nearest sample time [m]:
 /// rate · step / 2, rounded up. A sampled minimum above it refines to a positive clearance.
