@@ -130,7 +130,8 @@ void compare_all(std::vector<comparison>& pending, std::size_t first, const opti
   }
 }
 
-const char* name_of(mm::family f) { return f == mm::family::brake ? "brake" : "accelerate"; }
+/// The family's name, as `mm::to_string` gives it.
+std::string name_of(mm::family f) { return std::string(mm::to_string(f)); }
 
 /// The value at quantile q of sorted `values` (nearest rank), 0 when there are none.
 double quantile(const std::vector<double>& sorted, double q) {
@@ -208,7 +209,7 @@ int measure(const options& o) {
     std::printf("map: max |dMI| %.4f (%s at %.2f s, tau %.3f s, %s); over the plans with a relevant obstacle: "
                 "median %.4f, p99 %.4f; plans over %g: %zu\n",
                 largest->worst.value, largest->agent.c_str(), largest->time, largest->worst_tau,
-                name_of(largest->worst.which), quantile(worst, 0.5), quantile(worst, 0.99), o.bound, over);
+                name_of(largest->worst.which).c_str(), quantile(worst, 0.5), quantile(worst, 0.99), o.bound, over);
   }
   std::printf("selection: tau disagreements %zu of %zu plans with one relevant obstacle whose best tau leads by > %g; "
               "family disagreements %zu of %zu plans whose selected family leads by > %g; largest |d selected room| "
@@ -227,7 +228,8 @@ int measure(const options& o) {
       char row[512];
       std::snprintf(row, sizeof row, "%.2f,%s,%zu,%d,%.6f,%.3f,%s,%.3f,%.3f,%s,%s,%.6f,%.6f,%.6f\n", c.time,
                     c.agent.c_str(), c.relevant, c.compared ? 1 : 0, c.worst.value, c.worst_tau,
-                    name_of(c.worst.which), c.fast_tau, c.reference_tau, name_of(c.fast_family), name_of(c.reference_family), c.forecast_margin, c.family_margin,
+                    name_of(c.worst.which).c_str(), c.fast_tau, c.reference_tau, name_of(c.fast_family).c_str(),
+                    name_of(c.reference_family).c_str(), c.forecast_margin, c.family_margin,
                     c.selected_room_difference);
       file << row;
     }
