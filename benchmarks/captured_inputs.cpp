@@ -10,8 +10,8 @@ std::span<const captured_input> captured_inputs() {
   static const std::vector<captured_input> inputs{
       {"obstacles:0", 0, {"s3-left-turn", {}, "A", 1.0}, "S3 before B comes within reach"},
       {"obstacles:1", 1, {"s3-left-turn", {}, "A", 4.80}, "S3, least room of the run (B turning across A)"},
-      {"obstacles:2", 2, {"s6-busy-roundabout", {}, "N01", 7.55},
-       "S6, N01's least room among its plans with two interacting neighbours in 5.5-8.6 s (18 relevant)"},
+      {"obstacles:2", 2, {"s6-busy-roundabout", {}, "N01", 6.60},
+       "S6, N01's least room among its plans with two interacting neighbours (17 relevant)"},
       {"obstacles:4", 4, {"s6-busy-roundabout", {}, "E02", 7.88},
        "S6, E02's least room among its plans with four interacting neighbours in 6.5-9.6 s (19 relevant)"},
       {"obstacles:8", 8, {"s7-crosswalk-crowd", {}, "A", 4.05},

@@ -4,6 +4,7 @@
 #include <array>
 #include <bit>
 #include <cstdint>
+#include <vector>
 
 #include "mm/geometry.hpp"
 
@@ -136,6 +137,170 @@ double positive_fraction(double c00, double c10, double c01, double c11) {
   double twice_area = 0.0;
   for (std::size_t i = 0; i < n; ++i) twice_area += cross(polygon[i], polygon[(i + 1) % n]);
   return std::clamp(0.5 * twice_area, 0.0, 1.0);
+}
+
+namespace {
+
+/// A convex polygon and the half-planes that cut it: the part of the cell safe so far.
+using polygon = std::vector<vec2>;
+
+/// The part of convex `region` on the side of the line through a and b where `inside` lies
+/// (Sutherland–Hodgman against one edge).
+polygon clipped(const polygon& region, vec2 a, vec2 b, vec2 inside) {
+  const vec2 along = b - a;
+  const double side = cross(along, inside - a) < 0.0 ? -1.0 : 1.0;
+  const auto height = [&](vec2 x) { return side * cross(along, x - a); };
+  polygon out;
+  out.reserve(region.size() + 1);
+  for (std::size_t i = 0; i < region.size(); ++i) {
+    const vec2 u = region[i];
+    const vec2 v = region[(i + 1) % region.size()];
+    const double hu = height(u);
+    const double hv = height(v);
+    if (hu >= 0.0) out.push_back(u);
+    if ((hu >= 0.0) != (hv >= 0.0)) out.push_back(u + (hu / (hu - hv)) * (v - u));
+  }
+  return out;
+}
+
+double area(const polygon& region) {
+  double twice = 0.0;
+  for (std::size_t i = 0; i < region.size(); ++i) twice += cross(region[i], region[(i + 1) % region.size()]);
+  return 0.5 * twice;
+}
+
+constexpr std::array<vec2, 4> unit_square{vec2{0.0, 0.0}, vec2{1.0, 0.0}, vec2{1.0, 1.0}, vec2{0.0, 1.0}};
+
+/// The area of `region` ∩ the safe regions of obstacles[first..]: each obstacle's region is one
+/// convex polygon (cut by one chord, or a saddle by two) or, a saddle with its centre ≤ 0, two
+/// disjoint corner triangles, whose parts are added.
+double safe_area(const polygon& region, std::span<const cell_corners> obstacles, std::size_t first) {
+  if (region.size() < 3) return 0.0;
+  if (first == obstacles.size()) return area(region);
+  const cell_corners& c = obstacles[first];
+  const auto positive = [&](std::size_t i) { return c[i] > 0.0; };
+  const auto crossing = [&](std::size_t i) {
+    const std::size_t k = (i + 1) % 4;
+    return unit_square[i] + (c[i] / (c[i] - c[k])) * (unit_square[k] - unit_square[i]);
+  };
+  const int positives = positive(0) + positive(1) + positive(2) + positive(3);
+  if (positives == 4) return safe_area(region, obstacles, first + 1);
+  if (positives == 0) return 0.0;
+  const bool saddle = positive(0) == positive(2) && positive(1) == positive(3);
+  if (!saddle) {
+    // One chord, between the crossings on the two edges whose ends differ.
+    std::array<vec2, 2> ends{};
+    std::size_t n = 0;
+    std::size_t inside = 0;
+    for (std::size_t i = 0; i < 4; ++i) {
+      if (positive(i) != positive((i + 1) % 4)) ends[n++] = crossing(i);
+      if (positive(i)) inside = i;
+    }
+    return safe_area(clipped(region, ends[0], ends[1], unit_square[inside]), obstacles, first + 1);
+  }
+  // A corner i is cut off by the chord between the crossings on its two edges (i − 1 and i).
+  if (0.25 * (c[0] + c[1] + c[2] + c[3]) > 0.0) {
+    polygon cut = region;
+    for (std::size_t i = 0; i < 4; ++i) {
+      if (!positive(i)) cut = clipped(cut, crossing(i), crossing((i + 3) % 4), unit_square[(i + 2) % 4]);
+    }
+    return safe_area(cut, obstacles, first + 1);
+  }
+  double sum = 0.0;
+  for (std::size_t i = 0; i < 4; ++i) {
+    if (positive(i)) {
+      sum += safe_area(clipped(region, crossing(i), crossing((i + 3) % 4), unit_square[i]), obstacles, first + 1);
+    }
+  }
+  return sum;
+}
+
+}  // namespace
+
+double safe_fraction(std::span<const cell_corners> obstacles) {
+  if (obstacles.empty()) return 1.0;
+  if (obstacles.size() == 1) {
+    const cell_corners& c = obstacles.front();
+    return positive_fraction(c[0], c[1], c[3], c[2]);
+  }
+  for (const cell_corners& c : obstacles) {
+    if (!(c[0] > 0.0) && !(c[1] > 0.0) && !(c[2] > 0.0) && !(c[3] > 0.0)) return 0.0;
+  }
+  return std::clamp(safe_area(polygon(unit_square.begin(), unit_square.end()), obstacles, 0), 0.0, 1.0);
+}
+
+double safe_fraction(std::span<const std::array<double, 2>> obstacles) {
+  if (obstacles.empty()) return 1.0;
+  if (obstacles.size() == 1) return positive_fraction(obstacles.front()[0], obstacles.front()[1]);
+  double low = 0.0;
+  double high = 1.0;
+  for (const auto& [c0, c1] : obstacles) {
+    const bool p0 = c0 > 0.0;
+    const bool p1 = c1 > 0.0;
+    if (p0 && p1) continue;
+    if (!p0 && !p1) return 0.0;
+    const double t = c0 / (c0 - c1);
+    if (p0) {
+      high = std::min(high, t);
+    } else {
+      low = std::max(low, t);
+    }
+  }
+  return std::clamp(high - low, 0.0, 1.0);
+}
+
+double maneuverability_index_of_union(const displacement_set& set,
+                                      std::span<const std::span<const double>> clearances) {
+  if (clearances.empty()) return 1.0;
+  if (clearances.size() == 1) return maneuverability_index(set, clearances.front());
+  const std::size_t nodes = set.samples.size();
+  const auto safe_node = [&](std::size_t k) {
+    for (const std::span<const double> c : clearances) {
+      if (!(c[k] > 0.0)) return false;
+    }
+    return true;
+  };
+  if (set.degenerate) {
+    std::size_t safe = 0;
+    for (std::size_t k = 0; k < nodes; ++k) safe += safe_node(k) ? 1 : 0;
+    return static_cast<double>(safe) / static_cast<double>(nodes);
+  }
+  bool all_safe = true;
+  for (std::size_t k = 0; k < nodes && all_safe; ++k) all_safe = safe_node(k);
+  if (all_safe) return 1.0;
+  const std::size_t columns = set.curvature_count;
+  double total = 0.0;
+  double safe = 0.0;
+  if (columns == 1) {
+    std::vector<std::array<double, 2>> ends;
+    for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+      const double w = set.cell_weights[ia];
+      total += w;
+      ends.clear();
+      for (const std::span<const double> c : clearances) {
+        if (!(c[ia] > 0.0) || !(c[ia + 1] > 0.0)) ends.push_back({c[ia], c[ia + 1]});
+      }
+      safe += ends.empty() ? w : w * safe_fraction(std::span<const std::array<double, 2>>(ends));
+    }
+  } else {
+    std::vector<cell_corners> corners;
+    for (std::size_t ia = 0; ia + 1 < set.acceleration_count; ++ia) {
+      for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
+        const double w = set.cell_weights[ia * (columns - 1) + ik];
+        const std::size_t lower = ia * columns + ik;
+        const std::size_t upper = lower + columns;
+        total += w;
+        corners.clear();
+        for (const std::span<const double> c : clearances) {
+          const cell_corners cell{c[lower], c[lower + 1], c[upper + 1], c[upper]};
+          if (!(cell[0] > 0.0) || !(cell[1] > 0.0) || !(cell[2] > 0.0) || !(cell[3] > 0.0)) corners.push_back(cell);
+        }
+        safe += corners.empty() ? w : w * safe_fraction(std::span<const cell_corners>(corners));
+      }
+    }
+  }
+  if (total <= 0.0) return 1.0;
+  return std::clamp(safe / total, 0.0, 1.0);
 }
 
 namespace {

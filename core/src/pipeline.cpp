@@ -42,7 +42,8 @@ plan_result invalid(std::string error) {
 /// The clearances of every relevant obstacle under an assignment of forecast times, and how to
 /// turn them into indices. The reference holds ±1 per sample (collides or not) and counts; the fast
 /// path holds a `clearance_field` per obstacle and makes exact only the values the interpolating
-/// indices read (`make_read_values_exact`).
+/// indices read (`make_read_values_exact`; with several obstacles `union_indices`, each obstacle
+/// interpolated on its own).
 class evaluator {
  public:
   evaluator(const maneuver_samples& samples, bool reference) : samples_(samples), reference_(reference) {}
@@ -85,9 +86,12 @@ class evaluator {
   /// MI− and MI+ (spec §6) of `c`, the set combined last (`combined`, `column`, or the scratch
   /// set): the reference counts safe samples' areas; the fast path interpolates, reading the signs
   /// from `positive_`, which holds those of `c` — or, `rough`, from those signs alone (`sign_index`;
-  /// `c` is then not read, nor written by a rough `combined_parts`).
+  /// `c` is then not read, nor written by a rough `combined_parts`). With several obstacles that are
+  /// not inert, the indices of the union, found when `c` was combined (`union_indices`): `c` then
+  /// holds only signs (±cap).
   maneuverability_pair indices(const clearance_set& c, bool rough = false) const {
     if (reference_) return maneuverability_indices(samples_, colliding(c));
+    if (!rough && union_indices_) return *union_indices_;
     const index_range b = samples_.grid(family::brake);
     const index_range a = samples_.grid(family::accelerate);
     if (rough) {
@@ -227,10 +231,104 @@ class evaluator {
       if (!fields_[j].inert()) negative_ |= fields_[j].collisions(i);
     }
     positive_.assign_complement(negative_);
+    union_indices_.reset();
     if (rough) return;  // the signs are all a rough room reads
+    std::size_t live = 0;
+    for (const auto& part : parts) live += fields_[part.first].inert() ? 0 : 1;
+    if (live >= 2) {
+      union_indices_ = union_indices(parts);
+      c.assign(samples_.size(), clearance_cap);
+      negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
+      return;
+    }
     c.assign(samples_.size(), clearance_cap);
     negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
     make_read_values_exact(parts, c);
+  }
+
+  /// MI− and MI+ under several obstacles (`maneuverability_index_of_union`, each obstacle
+  /// interpolated on its own), making exact every value they read: for each obstacle with a
+  /// sampled collision, the ends of its sign-changing edges (and the four corners of its saddle
+  /// cells) in every cell that no obstacle is ≤ 0 at all four corners of. A value read ≤ 0 where
+  /// the obstacle's sampled set had none (a contact between sample times) makes that sample
+  /// collide — in `negative_` and `positive_` too — and the cells around it are looked at again.
+  maneuverability_pair union_indices(std::span<const std::pair<std::size_t, std::size_t>> parts) {
+    union_parts_.clear();
+    for (const auto& [j, i] : parts) {
+      if (!fields_[j].inert() && fields_[j].collides(i)) union_parts_.emplace_back(j, i);
+    }
+    union_spans_.clear();
+    for (const auto& [j, i] : union_parts_) union_spans_.push_back(fields_[j].set(i));
+    for (bool flipped = true; flipped;) {
+      flipped = false;
+      for (const family f : {family::brake, family::accelerate}) flipped |= read_union_cells(f);
+    }
+    maneuverability_pair mi;
+    for (const family f : {family::brake, family::accelerate}) {
+      const index_range r = samples_.grid(f);
+      union_family_spans_.clear();
+      for (const std::span<const double> all : union_spans_) union_family_spans_.push_back(all.subspan(r.begin, r.size()));
+      (f == family::brake ? mi.brake : mi.accelerate) =
+          maneuverability_index_of_union(samples_.set(f), union_family_spans_);
+    }
+    return mi;
+  }
+
+  /// One pass of `union_indices` over the cells of family f; true when a value read was ≤ 0 where
+  /// its placeholder was positive.
+  bool read_union_cells(family f) {
+    const displacement_set& set = samples_.set(f);
+    if (set.degenerate) return false;  // counts signs only
+    const std::size_t first = samples_.grid(f).begin;
+    const std::size_t columns = set.curvature_count;
+    const std::size_t rows = set.acceleration_count;
+    bool flipped = false;
+    const auto make_exact = [&](std::size_t p, std::size_t m) {
+      const auto [j, i] = union_parts_[p];
+      if (fields_[j].is_exact(i, m)) return;
+      const bool was_positive = union_spans_[p][m] > 0.0;
+      if (!(fields_[j].exact(i, m) > 0.0) && was_positive) {
+        flipped = true;
+        negative_.set(m);
+        positive_.reset(m);
+      }
+    };
+    const std::size_t across = columns == 1 ? 1 : columns - 1;
+    for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
+      for (std::size_t ik = 0; ik < across; ++ik) {
+        // Corners counter-clockwise: (ia, ik), (ia, ik + 1), (ia + 1, ik + 1), (ia + 1, ik); one column: two.
+        const std::size_t lower = first + ia * columns + ik;
+        const std::size_t upper = lower + columns;
+        const std::array<std::size_t, 4> corner{lower, lower + 1, upper + 1, upper};
+        const std::size_t count = columns == 1 ? 2 : 4;
+        const std::array<std::size_t, 4> node = columns == 1 ? std::array<std::size_t, 4>{lower, upper, 0, 0} : corner;
+        bool covered = false;
+        bool any = false;
+        for (std::size_t p = 0; p < union_spans_.size() && !covered; ++p) {
+          std::size_t negatives = 0;
+          for (std::size_t q = 0; q < count; ++q) negatives += union_spans_[p][node[q]] > 0.0 ? 0 : 1;
+          covered = negatives == count;
+          any = any || negatives > 0;
+        }
+        if (covered || !any) continue;
+        for (std::size_t p = 0; p < union_spans_.size(); ++p) {
+          const std::span<const double> c = union_spans_[p];
+          std::array<bool, 4> positive{};
+          std::size_t positives = 0;
+          for (std::size_t q = 0; q < count; ++q) positives += (positive[q] = c[node[q]] > 0.0) ? 1 : 0;
+          if (positives == count) continue;
+          const bool saddle = count == 4 && positive[0] == positive[2] && positive[1] == positive[3];
+          for (std::size_t q = 0; q < count; ++q) {
+            const std::size_t next = (q + 1) % count;
+            if (saddle || positive[q] != positive[next]) {
+              make_exact(p, node[q]);
+              make_exact(p, node[next]);
+            }
+          }
+        }
+      }
+    }
+    return flipped;
   }
 
   /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap), obstacle
@@ -337,6 +435,10 @@ class evaluator {
   static constexpr std::size_t absent = std::numeric_limits<std::size_t>::max();
   std::vector<std::size_t> forecast_of_;  ///< scratch of make_read_values_exact: [j] forecast index, or `absent`
   std::vector<std::pair<std::size_t, std::size_t>> live_parts_;  ///< scratch of make_read_values_exact
+  std::optional<maneuverability_pair> union_indices_;  ///< of the set combined last, when several obstacles are live
+  std::vector<std::pair<std::size_t, std::size_t>> union_parts_;  ///< scratch of union_indices: (j, i) with a collision
+  std::vector<std::span<const double>> union_spans_;             ///< their sets, every sample
+  std::vector<std::span<const double>> union_family_spans_;      ///< their sets over one family's grid
 };
 
 }  // namespace

@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <span>
 #include <random>
 #include <string>
 #include <vector>
@@ -118,6 +120,68 @@ TEST(maneuverability_properties, the_indices_with_and_without_sign_bits_are_the_
     }
     ASSERT_EQ(maneuverability_index(set, c, positive, first), interpolated) << input << ", first " << first;
     ASSERT_EQ(sign_index(set, positive, first), signs) << input << ", first " << first;
+  }
+}
+
+TEST(maneuverability_properties, the_safe_share_of_several_planar_clearances_is_the_area_where_every_one_is_positive) {
+  // Clearances that are planes (c = α + βx + γy) interpolate exactly: each obstacle's safe region
+  // is a half-plane, and safe_fraction must be the area where all are positive, here counted on a
+  // 400 × 400 grid of points (so within about 2/400 of it).
+  std::mt19937_64 rng(testing::property_seed() + 33);
+  std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+  const std::size_t count = testing::property_count(300);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const std::size_t obstacles = 1 + trial % 4;
+    std::vector<std::array<double, 3>> planes;
+    std::vector<cell_corners> corners;
+    for (std::size_t j = 0; j < obstacles; ++j) {
+      const std::array<double, 3> p{0.3 * coefficient(rng), coefficient(rng), coefficient(rng)};
+      const auto at = [&](double x, double y) { return p[0] + p[1] * x + p[2] * y; };
+      planes.push_back(p);
+      corners.push_back({at(0, 0), at(1, 0), at(1, 1), at(0, 1)});
+    }
+    constexpr int n = 400;
+    int inside = 0;
+    for (int ix = 0; ix < n; ++ix) {
+      for (int iy = 0; iy < n; ++iy) {
+        const double x = (ix + 0.5) / n;
+        const double y = (iy + 0.5) / n;
+        bool safe = true;
+        for (const auto& p : planes) safe = safe && p[0] + p[1] * x + p[2] * y > 0.0;
+        inside += safe ? 1 : 0;
+      }
+    }
+    std::string input = "seed " + std::to_string(testing::property_seed()) + ", trial " + std::to_string(trial) + ":";
+    for (const auto& p : planes) input += " (" + std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]) + ")";
+    const double share = safe_fraction(corners);
+    ASSERT_NEAR(share, static_cast<double>(inside) / (n * n), 0.006) << input;
+    // The order of the obstacles does not matter.
+    std::reverse(corners.begin(), corners.end());
+    ASSERT_NEAR(safe_fraction(corners), share, 1e-12) << input;
+  }
+}
+
+TEST(maneuverability_properties, the_index_of_a_union_is_the_one_obstacle_index_when_only_one_obstacle_collides) {
+  std::mt19937_64 rng(testing::property_seed() + 34);
+  std::uniform_real_distribution<double> value(-3.0, 3.0);
+  const std::size_t count = testing::property_count(200);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    ego_state ego;
+    ego.speed = 1.0 + static_cast<double>(rng() % 200) / 10.0;
+    const sampling_resolution resolution{2 + rng() % 20, trial % 5 == 0 ? 1 : 2 + rng() % 30};
+    const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, resolution, false, false);
+    const displacement_set& set = trial % 2 == 0 ? samples.brake : samples.accelerate;
+    std::vector<double> colliding(set.samples.size());
+    std::vector<double> clear(set.samples.size());
+    for (std::size_t m = 0; m < colliding.size(); ++m) {
+      colliding[m] = value(rng);
+      clear[m] = 0.01 + std::abs(value(rng));
+    }
+    const std::string input = "seed " + std::to_string(testing::property_seed()) + ", trial " + std::to_string(trial);
+    const std::array<std::span<const double>, 1> one{colliding};
+    const std::array<std::span<const double>, 3> three{clear, colliding, clear};
+    ASSERT_EQ(maneuverability_index_of_union(set, one), maneuverability_index(set, colliding)) << input;
+    ASSERT_EQ(maneuverability_index_of_union(set, three), maneuverability_index(set, colliding)) << input;
   }
 }
 

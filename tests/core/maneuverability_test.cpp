@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
+#include <span>
+
 #include <random>
 
 namespace mm {
@@ -52,6 +55,36 @@ std::vector<double> clearance_of(const displacement_set& set, Clearance c) {
   std::vector<double> values;
   for (const displacement_sample& s : set.samples) values.push_back(c(s.u));
   return values;
+}
+
+TEST(maneuverability, two_obstacles_leave_the_corridor_between_their_collision_sets_safe) {
+  // Obstacle 1 collides where x < 0.3, obstacle 2 where x > 0.8 (both clearances linear in x). Every
+  // corner collides with one of them, so the minimum of the two is ≤ 0 at every corner and its
+  // interpolant sees no room; each interpolated on its own leaves 0.3 < x < 0.8.
+  const std::array<cell_corners, 2> two{cell_corners{-0.3, 0.7, 0.7, -0.3}, cell_corners{0.8, -0.2, -0.2, 0.8}};
+  EXPECT_NEAR(safe_fraction(two), 0.5, 1e-12);
+  EXPECT_EQ(positive_fraction(-0.3, -0.2, -0.3, -0.2), 0.0);  // the minimum of the two
+}
+
+TEST(maneuverability, two_obstacles_cutting_different_corners_leave_what_neither_cuts) {
+  // Obstacle 1: x + y < 0.5 (a triangle of 1/8); obstacle 2: y > 0.75 (a strip of 1/4).
+  const std::array<cell_corners, 2> two{cell_corners{-0.5, 0.5, 1.5, 0.5}, cell_corners{0.75, 0.75, -0.25, -0.25}};
+  EXPECT_NEAR(safe_fraction(two), 1.0 - 0.125 - 0.25, 1e-12);
+  // An obstacle safe at every corner changes nothing; one unsafe at every corner leaves nothing.
+  const std::array<cell_corners, 2> with_safe{two[0], cell_corners{1.0, 2.0, 3.0, 4.0}};
+  EXPECT_EQ(safe_fraction(with_safe), safe_fraction(std::span(two).first(1)));
+  const std::array<cell_corners, 3> with_covering{two[0], two[1], cell_corners{-1.0, -2.0, 0.0, -0.5}};
+  EXPECT_EQ(safe_fraction(with_covering), 0.0);
+  // Along one column: x < 0.25 unsafe for one, x > 0.5 for the other.
+  const std::array<std::array<double, 2>, 2> ends{std::array<double, 2>{-0.25, 0.75}, std::array<double, 2>{0.5, -0.5}};
+  EXPECT_NEAR(safe_fraction(std::span<const std::array<double, 2>>(ends)), 0.25, 1e-12);
+}
+
+TEST(maneuverability, one_obstacle_s_safe_fraction_is_its_positive_fraction) {
+  const cell_corners saddle{0.2, -1.0, 0.2, -1.0};
+  EXPECT_EQ(safe_fraction(std::span(&saddle, 1)), positive_fraction(0.2, -1.0, -1.0, 0.2));
+  const cell_corners corner{-0.4, 0.6, 1.1, 0.3};
+  EXPECT_EQ(safe_fraction(std::span(&corner, 1)), positive_fraction(-0.4, 0.6, 0.3, 1.1));
 }
 
 TEST(maneuverability, interpolated_index_places_a_boundary_between_nodes_where_counting_cannot) {

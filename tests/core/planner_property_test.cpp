@@ -5,8 +5,12 @@
 #include <algorithm>
 #include <cstdio>
 #include <cmath>
+#include <span>
+#include <vector>
 
 #include "mm/collision.hpp"
+#include "mm/collision_sets.hpp"
+#include "mm/maneuverability.hpp"
 #include "mm/reference_planner.hpp"
 #include "property.hpp"
 #include "random_scenes.hpp"
@@ -232,6 +236,48 @@ double adjustable_margin(const plan_result& r) {
   }
   std::sort(rooms.rbegin(), rooms.rend());
   return rooms.size() < 2 ? 1.0 : rooms[0] - rooms[1];
+}
+
+TEST(planner_properties, the_fast_indices_of_several_obstacles_are_the_union_index_of_their_brute_force_clearances) {
+  // Every column of the map: the fast path reads only the values where some obstacle's clearance
+  // changes sign; the union index of every obstacle's brute-force clearances (clamped to ±2 m as the
+  // planner's are) must come out the same, bit for bit.
+  std::mt19937_64 rng(testing::property_seed() + 41);
+  const std::size_t count = testing::property_count(16);
+  std::size_t several = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    plan_input in = testing::random_scene(rng, {2 + trial % 2, trial % 3 != 0});
+    in.config.resolution = {9, 13};
+    in.config.safety_margin = trial % 4 == 1 ? 0.3 : 0.0;
+    const plan_result fast = plan(in);
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    ASSERT_TRUE(fast.ok());
+    const maneuver_samples samples =
+        sample_maneuvers(in.ego, 0.0, in.config.displacement_horizon, in.config.resolution, false, false);
+    const collision_window window{in.config.displacement_horizon, in.config.collision_window,
+                                  fast.collision_time_step, in.config.safety_margin};
+    std::vector<std::vector<clearance_set>> brute;  // [obstacle][forecast time][sample]
+    for (std::size_t j = 0; j < in.obstacles.size(); ++j) {
+      if (!fast.obstacles[j].relevant) continue;
+      brute.push_back(clearances_reference(in.ego, samples, {fast.obstacles[j].motion, in.obstacles[j].shape},
+                                           fast.forecast_times, window));
+      for (clearance_set& c : brute.back()) {
+        for (double& v : c) v = std::clamp(v, -2.0, 2.0);
+      }
+    }
+    several += brute.size() >= 2 ? 1 : 0;
+    for (std::size_t i = 0; i < fast.forecast_times.size(); ++i) {
+      for (const family f : {family::brake, family::accelerate}) {
+        const index_range r = samples.grid(f);
+        std::vector<std::span<const double>> parts;
+        for (const auto& sets : brute) parts.push_back(std::span(sets[i]).subspan(r.begin, r.size()));
+        const double expected = maneuverability_index_of_union(samples.set(f), parts);
+        ASSERT_EQ(f == family::brake ? fast.mi_brake[i] : fast.mi_accelerate[i], expected)
+            << "trial " << trial << ", tau " << fast.forecast_times[i] << (f == family::brake ? ", MI-" : ", MI+");
+      }
+    }
+  }
+  EXPECT_GT(several, count / 4) << "most scenes must have several relevant obstacles";
 }
 
 TEST(planner_properties, fast_planner_agrees_with_the_reference_within_the_accuracy_bound) {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -30,6 +31,25 @@ double positive_fraction(double c00, double c10, double c01, double c11);
 /// Share of [0, 1] where the linear interpolant of c0 (at 0) and c1 (at 1) is positive.
 double positive_fraction(double c0, double c1);
 
+/// One obstacle's clearances at the corners of a cell, counter-clockwise: (0, 0), (1, 0), (1, 1),
+/// (0, 1) — along κ first, then along a (c00, c10, c11, c01 of `positive_fraction`).
+using cell_corners = std::array<double, 4>;
+
+/// Share of the unit square that is safe from every obstacle in `obstacles`: the intersection of
+/// each obstacle's region where its interpolated clearance is positive. Each region is
+/// `positive_fraction`'s polygon — the square cut by the segment between the crossings on its
+/// edges (a saddle: by two, or two corner triangles when the centre value is ≤ 0) — so the
+/// intersection of a few half-planes with the square, found by clipping. One obstacle:
+/// `positive_fraction` of its corners, bit for bit; an obstacle ≤ 0 at every corner: 0.
+/// Interpolating each obstacle on its own, not their minimum, keeps the boundary of the union of
+/// the collision sets where each obstacle puts its own: a minimum of several clearances has kinks
+/// between the nodes that a linear interpolant of it misses (docs/method.md §4.3).
+double safe_fraction(std::span<const cell_corners> obstacles);
+
+/// Share of [0, 1] safe from every obstacle, each interpolated linearly from its values at 0 and 1
+/// (`positive_fraction`): the intersection of intervals. One obstacle: `positive_fraction`.
+double safe_fraction(std::span<const std::array<double, 2>> obstacles);
+
 /// Maneuverability Index from the signed clearances of the family's nodes (spec §6, the fast
 /// estimator): MI = Σ_cells W_cell · positive_fraction(corners) / Σ_cells W_cell over the cells
 /// between nodes (`displacement_set::cell_weights`). The safe/unsafe boundary is located between
@@ -37,6 +57,17 @@ double positive_fraction(double c0, double c1);
 /// order in the node spacing. `clearance[k]` belongs to `set.samples[k]`; positive is safe. A
 /// degenerate set counts its safe nodes.
 double maneuverability_index(const displacement_set& set, std::span<const double> clearance);
+
+/// Maneuverability Index of the safe set of several obstacles, AS \ ∪_j CSS_j (spec §6, §9), from
+/// each obstacle's signed clearances (`clearances[j][k]`: obstacle j's clearance of
+/// `set.samples[k]`, positive is safe): MI = Σ_cells W_cell · safe_fraction(the corners of the
+/// obstacles with a corner ≤ 0) / Σ_cells W_cell — a cell where no obstacle has a corner ≤ 0 adds its
+/// whole weight. With one obstacle equal, bit for bit, to `maneuverability_index(set, clearances[0])`;
+/// with several, not the index of their minimum (see `safe_fraction`). A degenerate set counts the
+/// nodes safe from every obstacle. The reference of the planner's indices with several obstacles,
+/// which read only the corners of the cells where an obstacle's clearance changes sign.
+double maneuverability_index_of_union(const displacement_set& set,
+                                      std::span<const std::span<const double>> clearances);
 
 /// `maneuverability_index` from the signs of the clearances alone, as if every positive node were
 /// +1 and every other −1: the boundary through the middle of every edge whose ends differ. Equal
