@@ -303,6 +303,61 @@ double maneuverability_index_of_union(const displacement_set& set,
   return std::clamp(safe / total, 0.0, 1.0);
 }
 
+double maneuverability_index_of_union(const displacement_set& set,
+                                      std::span<const std::span<const double>> clearances,
+                                      std::span<const sample_mask> negative, std::size_t first) {
+  const std::size_t columns = set.curvature_count;
+  const std::size_t rows = set.acceleration_count;
+  const std::size_t count = clearances.size();
+  if (count <= 1 || set.degenerate || columns < 2 || columns > 64 || rows < 2 || rows > 64 ||
+      negative.size() != count) {
+    return maneuverability_index_of_union(set, clearances);
+  }
+  const auto row_bits = [&](std::size_t j, std::size_t ia) { return negative[j].bits(first + ia * columns, columns); };
+  bool all_safe = true;
+  for (std::size_t j = 0; j < count && all_safe; ++j) {
+    for (std::size_t ia = 0; ia < rows && all_safe; ++ia) all_safe = row_bits(j, ia) == 0;
+  }
+  if (all_safe) return 1.0;
+  const std::uint64_t cells = (std::uint64_t{1} << (columns - 1)) - 1;
+  std::vector<std::uint64_t> touching(count);  // per obstacle: the cells of the row with a corner ≤ 0
+  std::vector<cell_corners> corners;
+  corners.reserve(count);
+  double total = 0.0;
+  double safe = 0.0;
+  for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
+    std::uint64_t touched = 0;
+    std::uint64_t covered = 0;
+    for (std::size_t j = 0; j < count; ++j) {
+      const std::uint64_t lower = row_bits(j, ia);
+      const std::uint64_t upper = row_bits(j, ia + 1);
+      touching[j] = (lower | (lower >> 1) | upper | (upper >> 1)) & cells;
+      touched |= touching[j];
+      covered |= lower & (lower >> 1) & upper & (upper >> 1) & cells;
+    }
+    const double* w = set.cell_weights.data() + ia * (columns - 1);
+    for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
+      total += w[ik];
+      if (((touched >> ik) & 1U) == 0) {
+        safe += w[ik];
+        continue;
+      }
+      if (((covered >> ik) & 1U) != 0) continue;  // adds w · 0
+      const std::size_t lower = ia * columns + ik;
+      const std::size_t upper = lower + columns;
+      corners.clear();
+      for (std::size_t j = 0; j < count; ++j) {
+        if (((touching[j] >> ik) & 1U) == 0) continue;
+        const std::span<const double> c = clearances[j];
+        corners.push_back({c[lower], c[lower + 1], c[upper + 1], c[upper]});
+      }
+      safe += w[ik] * safe_fraction(std::span<const cell_corners>(corners));
+    }
+  }
+  if (total <= 0.0) return 1.0;
+  return std::clamp(safe / total, 0.0, 1.0);
+}
+
 namespace {
 
 /// The signs of a family's nodes as one word per grid row: bit k of `rows[ia]` is set when node

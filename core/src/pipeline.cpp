@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -257,78 +258,119 @@ class evaluator {
     for (const auto& [j, i] : parts) {
       if (!fields_[j].inert() && fields_[j].collides(i)) union_parts_.emplace_back(j, i);
     }
+    const std::size_t count = union_parts_.size();
     union_spans_.clear();
-    for (const auto& [j, i] : union_parts_) union_spans_.push_back(fields_[j].set(i));
+    if (union_negative_.size() < count) union_negative_.resize(count);
+    for (std::size_t p = 0; p < count; ++p) {
+      const auto [j, i] = union_parts_[p];
+      union_spans_.push_back(fields_[j].set(i));
+      union_negative_[p] = fields_[j].collisions(i);
+    }
     for (bool flipped = true; flipped;) {
       flipped = false;
       for (const family f : {family::brake, family::accelerate}) flipped |= read_union_cells(f);
     }
+    const std::span<const sample_mask> negative = std::span(union_negative_).first(count);
     maneuverability_pair mi;
     for (const family f : {family::brake, family::accelerate}) {
       const index_range r = samples_.grid(f);
       union_family_spans_.clear();
       for (const std::span<const double> all : union_spans_) union_family_spans_.push_back(all.subspan(r.begin, r.size()));
       (f == family::brake ? mi.brake : mi.accelerate) =
-          maneuverability_index_of_union(samples_.set(f), union_family_spans_);
+          maneuverability_index_of_union(samples_.set(f), union_family_spans_, negative, r.begin);
     }
     return mi;
   }
 
-  /// One pass of `union_indices` over the cells of family f; true when a value read was ≤ 0 where
-  /// its placeholder was positive.
+  /// One pass of `union_indices` over the cells of family f, a grid row at a time on the words of
+  /// the obstacles' sign masks; true when a value read was ≤ 0 where the obstacle's mask had the
+  /// sample positive.
   bool read_union_cells(family f) {
     const displacement_set& set = samples_.set(f);
     if (set.degenerate) return false;  // counts signs only
     const std::size_t first = samples_.grid(f).begin;
     const std::size_t columns = set.curvature_count;
     const std::size_t rows = set.acceleration_count;
+    const std::size_t count = union_parts_.size();
     bool flipped = false;
     const auto make_exact = [&](std::size_t p, std::size_t m) {
       const auto [j, i] = union_parts_[p];
       if (fields_[j].is_exact(i, m)) return;
-      const bool was_positive = union_spans_[p][m] > 0.0;
-      if (!(fields_[j].exact(i, m) > 0.0) && was_positive) {
+      if (!(fields_[j].exact(i, m) > 0.0) && !union_negative_[p].test(m)) {
         flipped = true;
+        union_negative_[p].set(m);
         negative_.set(m);
         positive_.reset(m);
       }
     };
-    const std::size_t across = columns == 1 ? 1 : columns - 1;
-    for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
-      for (std::size_t ik = 0; ik < across; ++ik) {
-        // Corners counter-clockwise: (ia, ik), (ia, ik + 1), (ia + 1, ik + 1), (ia + 1, ik); one column: two.
-        const std::size_t lower = first + ia * columns + ik;
-        const std::size_t upper = lower + columns;
-        const std::array<std::size_t, 4> corner{lower, lower + 1, upper + 1, upper};
-        const std::size_t count = columns == 1 ? 2 : 4;
-        const std::array<std::size_t, 4> node = columns == 1 ? std::array<std::size_t, 4>{lower, upper, 0, 0} : corner;
-        bool covered = false;
-        bool any = false;
-        for (std::size_t p = 0; p < union_spans_.size() && !covered; ++p) {
-          std::size_t negatives = 0;
-          for (std::size_t q = 0; q < count; ++q) negatives += union_spans_[p][node[q]] > 0.0 ? 0 : 1;
-          covered = negatives == count;
-          any = any || negatives > 0;
-        }
-        if (covered || !any) continue;
-        for (std::size_t p = 0; p < union_spans_.size(); ++p) {
-          const std::span<const double> c = union_spans_[p];
-          std::array<bool, 4> positive{};
-          std::size_t positives = 0;
-          for (std::size_t q = 0; q < count; ++q) positives += (positive[q] = c[node[q]] > 0.0) ? 1 : 0;
-          if (positives == count) continue;
-          const bool saddle = count == 4 && positive[0] == positive[2] && positive[1] == positive[3];
-          for (std::size_t q = 0; q < count; ++q) {
-            const std::size_t next = (q + 1) % count;
-            if (saddle || positive[q] != positive[next]) {
-              make_exact(p, node[q]);
-              make_exact(p, node[next]);
-            }
+    if (columns < 2 || columns > 64) {
+      // Node by node: along one column (two corners a cell), or rows longer than a word.
+      const std::size_t across = columns == 1 ? 1 : columns - 1;
+      const std::size_t corners = columns == 1 ? 2 : 4;
+      for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
+        for (std::size_t ik = 0; ik < across; ++ik) {
+          const std::size_t lower = first + ia * columns + ik;
+          const std::size_t upper = lower + columns;
+          const std::array<std::size_t, 4> node =
+              columns == 1 ? std::array<std::size_t, 4>{lower, upper, 0, 0}
+                           : std::array<std::size_t, 4>{lower, lower + 1, upper + 1, upper};
+          bool covered = false;
+          for (std::size_t p = 0; p < count && !covered; ++p) {
+            unsigned bits = 0;
+            for (std::size_t q = 0; q < corners; ++q) bits |= union_negative_[p].test(node[q]) ? 1U << q : 0U;
+            covered = bits == (1U << corners) - 1;
           }
+          if (covered) continue;
+          for (std::size_t p = 0; p < count; ++p) {
+            unsigned bits = 0;
+            for (std::size_t q = 0; q < corners; ++q) bits |= union_negative_[p].test(node[q]) ? 1U << q : 0U;
+            read_cell(p, bits, corners, node, make_exact);
+          }
+        }
+      }
+      return flipped;
+    }
+    const std::uint64_t cells = (std::uint64_t{1} << (columns - 1)) - 1;
+    for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
+      std::uint64_t covered = 0;
+      for (std::size_t p = 0; p < count; ++p) {
+        const std::uint64_t lower = union_negative_[p].bits(first + ia * columns, columns);
+        const std::uint64_t upper = union_negative_[p].bits(first + (ia + 1) * columns, columns);
+        covered |= lower & (lower >> 1) & upper & (upper >> 1) & cells;
+      }
+      for (std::size_t p = 0; p < count; ++p) {
+        const std::uint64_t lower = union_negative_[p].bits(first + ia * columns, columns);
+        const std::uint64_t upper = union_negative_[p].bits(first + (ia + 1) * columns, columns);
+        std::uint64_t touched = (lower | (lower >> 1) | upper | (upper >> 1)) & cells & ~covered;
+        while (touched != 0) {
+          const auto ik = static_cast<std::size_t>(std::countr_zero(touched));
+          touched &= touched - 1;
+          // Counter-clockwise: (ia, ik), (ia, ik + 1), (ia + 1, ik + 1), (ia + 1, ik).
+          const unsigned bits = static_cast<unsigned>(((lower >> ik) & 1U) | (((lower >> (ik + 1)) & 1U) << 1) |
+                                                      (((upper >> (ik + 1)) & 1U) << 2) | (((upper >> ik) & 1U) << 3));
+          const std::size_t at = first + ia * columns + ik;
+          read_cell(p, bits, 4, {at, at + 1, at + columns + 1, at + columns}, make_exact);
         }
       }
     }
     return flipped;
+  }
+
+  /// Makes exact what obstacle p's part of a cell reads: the ends of its sign-changing edges, or
+  /// every corner of a saddle. `negative` bit q is set when corner q (counter-clockwise) is ≤ 0.
+  template <class MakeExact>
+  static void read_cell(std::size_t p, unsigned negative, std::size_t corners, const std::array<std::size_t, 4>& node,
+                        MakeExact&& make_exact) {
+    const unsigned all = (1U << corners) - 1;
+    if (negative == 0 || negative == all) return;
+    const bool saddle = corners == 4 && (negative == 0b0101U || negative == 0b1010U);
+    for (std::size_t q = 0; q < corners; ++q) {
+      const std::size_t next = (q + 1) % corners;
+      if (saddle || ((negative >> q) & 1U) != ((negative >> next) & 1U)) {
+        make_exact(p, node[q]);
+        make_exact(p, node[next]);
+      }
+    }
   }
 
   /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap), obstacle
@@ -439,6 +481,7 @@ class evaluator {
   std::vector<std::pair<std::size_t, std::size_t>> union_parts_;  ///< scratch of union_indices: (j, i) with a collision
   std::vector<std::span<const double>> union_spans_;             ///< their sets, every sample
   std::vector<std::span<const double>> union_family_spans_;      ///< their sets over one family's grid
+  std::vector<sample_mask> union_negative_;  ///< their samples ≤ 0: the sampled collisions and the values read ≤ 0
 };
 
 }  // namespace

@@ -185,6 +185,41 @@ TEST(maneuverability_properties, the_index_of_a_union_is_the_one_obstacle_index_
   }
 }
 
+TEST(maneuverability_properties, the_index_of_a_union_with_sign_bits_is_the_cell_by_cell_one_bit_for_bit) {
+  std::mt19937_64 rng(testing::property_seed() + 35);
+  std::uniform_real_distribution<double> value(-3.0, 3.0);
+  const std::size_t count = testing::property_count(300);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    ego_state ego;
+    ego.speed = 1.0 + static_cast<double>(rng() % 200) / 10.0;
+    // Now and then one column, or rows longer than a word (the node-by-node path).
+    const std::size_t curvatures = trial % 11 == 0 ? 1 : trial % 13 == 0 ? 65 + rng() % 5 : 2 + rng() % 40;
+    const sampling_resolution resolution{2 + rng() % 20, curvatures};
+    const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, resolution, false, false);
+    const displacement_set& set = trial % 2 == 0 ? samples.brake : samples.accelerate;
+    const std::size_t obstacles = 1 + trial % 4;
+    const std::size_t first = rng() % 100;
+    std::vector<std::vector<double>> values(obstacles, std::vector<double>(set.samples.size()));
+    std::vector<sample_mask> negative(obstacles, sample_mask(first + set.samples.size() + rng() % 5));
+    for (std::size_t j = 0; j < obstacles; ++j) {
+      // Blobs of one sign around a random centre, so that obstacles overlap and leave corridors.
+      const double centre = static_cast<double>(rng() % set.samples.size());
+      const double radius = 1.0 + static_cast<double>(rng() % 30);
+      for (std::size_t m = 0; m < set.samples.size(); ++m) {
+        const double c = std::abs(static_cast<double>(m) - centre) - radius + 0.3 * value(rng);
+        values[j][m] = trial % 5 == 4 ? value(rng) : c;
+        if (!(values[j][m] > 0.0)) negative[j].set(first + m);
+      }
+    }
+    std::vector<std::span<const double>> spans(values.begin(), values.end());
+    const std::string input = "seed " + std::to_string(testing::property_seed()) + ", trial " + std::to_string(trial) +
+                              ", resolution " + std::to_string(resolution.accelerations) + " x " +
+                              std::to_string(resolution.curvatures) + ", obstacles " + std::to_string(obstacles);
+    ASSERT_EQ(maneuverability_index_of_union(set, spans, negative, first), maneuverability_index_of_union(set, spans))
+        << input;
+  }
+}
+
 TEST(maneuverability_properties, the_indices_with_sign_bits_equal_the_node_by_node_ones_on_degenerate_and_one_column_sets) {
   std::mt19937_64 rng(testing::property_seed() + 33);
   std::uniform_real_distribution<double> value(-3.0, 3.0);

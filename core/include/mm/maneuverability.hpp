@@ -69,6 +69,15 @@ double maneuverability_index(const displacement_set& set, std::span<const double
 double maneuverability_index_of_union(const displacement_set& set,
                                       std::span<const std::span<const double>> clearances);
 
+/// `maneuverability_index_of_union` with each obstacle's signs also given as bits: `negative[j]`
+/// holds, from index `first` on, one bit per node of `set` in node order, set where `clearances[j]`
+/// is ≤ 0. Equal bit for bit; a cell where no obstacle has a corner ≤ 0 adds its weight, and one
+/// that an obstacle is ≤ 0 at all four corners of adds nothing, without reading a value (grids of
+/// 2 to 64 rows and columns; others go node by node).
+double maneuverability_index_of_union(const displacement_set& set,
+                                      std::span<const std::span<const double>> clearances,
+                                      std::span<const sample_mask> negative, std::size_t first);
+
 /// `maneuverability_index` from the signs of the clearances alone, as if every positive node were
 /// +1 and every other −1: the boundary through the middle of every edge whose ends differ. Equal
 /// bit for bit to `maneuverability_index` of such a ±c set, from a table of the 16 sign patterns of
