@@ -715,7 +715,6 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   }
   sets_.assign(slots, {});
   sampled_.assign(slots, sample_mask(samples));
-  floor_.assign(slots, {});
   exact_.assign(slots, {});
 
   // The collisions. The sample times shared by every forecast time that includes them (t_k ≤ τ: the
@@ -1369,125 +1368,6 @@ double clearance_field::exact(std::size_t forecast, std::size_t m) {
     argmin_[i][m] = static_cast<std::uint32_t>(r.argmin);
   }
   return c;
-}
-
-double clearance_field::exact_below(std::size_t forecast, std::size_t m, double ceiling) {
-  const std::size_t i = slot(forecast);
-  if (is_exact(forecast, m) || ceiling >= cap_) return exact(forecast, m);
-  const std::size_t count = part_first_[i];
-  const double step = sweep_.window().time_step;
-  const double margin = sweep_.window().margin;
-  const double centre = centre_rate(m);
-  const double rate = distance_rate(m);
-  // Sampled values at or above this keep every value in between, and so the refined minimum, at or
-  // above the ceiling when the straight part is: every time of a refinement's bracket lies within
-  // half a step of a sample time, or within a step of the straight part, and the signed distance
-  // changes no faster than L.
-  const double limit = ceiling + 2.0 * refinement_threshold(rate, step);
-  if (limit >= walk_cap_) return exact(forecast, m);  // the exact walk prunes as much
-  if (const double below_all = floor_of_all(m); below_all >= ceiling) return below_all;
-  std::vector<double>& floor = floor_[i];
-  if (!floor.empty() && floor[m] >= ceiling) return floor[m];
-  {
-    // The straight part can be below the ceiling only where it comes within it (a threshold test).
-    const straight_motion part = straight_motion_of(forecast, m);
-    if (!straight_apart(part, ceiling) && straight_within(part, ceiling + rounding_slack)) return exact(forecast, m);
-  }
-  std::size_t k = 0;
-  const closing_speed centre_closing = closing_at(centre, step);
-  const closing_speed closing = closing_at(rate, step);
-  // A walk over the shared times (kept from an earlier exact value) bounds them all.
-  const std::size_t shared = shared_end(i);
-  if (const prefix_walk* prefix = walked_prefix(m); shared > 0 && prefix != nullptr && prefix->until >= shared) {
-    if (std::min(prefix->minimum.value, walk_cap_) < limit) return exact(forecast, m);
-    k = shared;
-  }
-  while (k < count) {
-    const obstacle_at o = obstacle_pose(i, k);
-    const ego_sweep::placement p = sweep_.at(k, m);
-    ++work_.bound_checks;
-    if (!surely_closer(p.position - o.position, reach_ + margin, limit)) {
-      const double bound = norm(p.position - o.position) - reach_ - margin;
-      if (bound >= limit) {
-        k = first_possible(k, bound - limit, centre_closing);
-        continue;
-      }
-    }
-    const lower_bound at = distance_or_bound(p, o, limit);
-    if (at.exact) {
-      ++work_.distance_evaluations;
-      if (at.value < limit) return exact(forecast, m);
-    }
-    k = first_possible(k, at.value - limit, closing);
-  }
-  if (floor.empty()) floor.assign(sweep_.sample_count(), -cap_);
-  floor[m] = ceiling;
-  return ceiling;
-}
-
-double clearance_field::floor_of_all(std::size_t m) {
-  if (!floor_all_) {
-    floor_all_ = std::make_unique_for_overwrite<double[]>(sweep_.sample_count());
-    floor_all_known_ = sample_mask(sweep_.sample_count());
-  }
-  double& floor = floor_all_[m];
-  if (floor_all_known_.test(m)) return floor;
-  floor_all_known_.set(m);  // assigned below, before anything reads it
-  // Under every forecast the obstacle's heading is within |ω| s of the start's at time s, so its
-  // reference point is within v |ω| t²/2 (and 2 v t) of the straight line at time t.
-  const motion_estimate& motion = obstacle_.motion;
-  const vec2 start = motion.pose.position;
-  const vec2 along = heading_direction_;
-  const double turn = motion.speed * std::abs(motion.yaw_rate);
-  const std::vector<double>& times = sweep_.times();
-  const collision_window& window = sweep_.window();
-  const double step = window.time_step;
-  const double margin = window.margin;
-  // The disc's centre moves at v and its radius grows at most at v |ω| T_c.
-  const double rate = centre_rate(m) + turn * window.duration;
-  // Without a turn the disc is a point moving on a line, and after T_h so is the sample's reference
-  // point: there the closest approach has a closed form, and the sample times are walked only up to
-  // the first at or after T_h (every time before it lies within half a step of a walked one).
-  const bool straight = turn == 0.0 && window.duration > window.horizon;
-  const double theta = sample_threshold(m);
-  std::size_t walked = times.size();
-  double straight_floor = std::numeric_limits<double>::infinity();
-  // The walk skips every time whose bound is provably at or above `target`: at or above the
-  // running minimum, it cannot lower it; at or above S + θ, with S the straight part's bound, it
-  // cannot lower the floor min(minimum − θ, S) either (the target is rounded up so that any bound
-  // at or above it, less θ, rounds to at least S).
-  double target = std::numeric_limits<double>::infinity();
-  if (straight) {
-    walked = std::min(horizon_index_ + 1, times.size());
-    // On [T_h, T_c] the reference points' offset is d(t) = d(T_h) + w (t − T_h): its smallest
-    // length is at the clamped vertex, in continuous time (so no θ), less a rounding slack.
-    ++work_.bound_checks;
-    const ego_sweep::line path = sweep_.straight_line(m);
-    const vec2 offset = path.start - (start + (motion.speed * window.horizon) * along);
-    const vec2 relative = path.velocity - motion.speed * along;
-    const double speed_squared = squared_norm(relative);
-    const double span = window.duration - window.horizon;
-    const double s = speed_squared > 0.0 ? std::clamp(-dot(offset, relative) / speed_squared, 0.0, span) : 0.0;
-    const double closest = norm(offset + s * relative) * (1.0 - 1e-12) - 1e-9;
-    straight_floor = closest - (1e-9 + reach_ + margin);
-    const double lifted = straight_floor + theta;
-    target = lifted + std::abs(lifted) * 1e-12 + 1e-12;
-  }
-  double low = walk_cap_;
-  const closing_speed closing = closing_at(rate, step);
-  for (std::size_t k = 0; k < walked;) {
-    const double t = times[k];
-    const double radius = std::min(0.5 * turn * t * t, 2.0 * motion.speed * t) * (1.0 + 1e-12) + 1e-9;
-    ++work_.bound_checks;
-    const double bound =
-        norm(sweep_.at(k, m).position - (start + (motion.speed * t) * along)) - radius - reach_ - margin;
-    low = std::min(low, bound);
-    k = first_possible(k, bound - std::min(low, target), closing);
-  }
-  // Between sample times the signed distance falls by at most θ.
-  floor = low - theta;
-  if (straight) floor = std::min(floor, straight_floor);
-  return floor;
 }
 
 void clearance_field::make_all_exact() {

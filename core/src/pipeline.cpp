@@ -373,68 +373,21 @@ class evaluator {
     }
   }
 
-  /// The exact minimum over the obstacles of the clearances of sample m [m] (clamped to ±cap), obstacle
-  /// j at forecast index `forecast_of_[j]` (`parts`: the obstacles that are not inert). Obstacles are
-  /// visited in the order of their floors for every forecast time (`by_floor`), and none whose floor
-  /// is at or above the minimum so far: those that collide there or are exact already first, then
-  /// the others, each asked only below the minimum so far.
-  double exact_minimum(std::span<const std::pair<std::size_t, std::size_t>> parts, std::size_t m) {
-    if (parts.empty()) return clearance_cap;
-    if (parts.size() == 1) return fields_[parts.front().first].exact(parts.front().second, m);
-    const auto known = [&](std::size_t j, std::size_t i) {
-      return fields_[j].is_exact(i, m) || fields_[j].collisions(i).test(m);
-    };
-    double value = clearance_cap;
-    const std::span<const std::pair<double, std::size_t>> order = by_floor(m);
-    for (const auto& [floor, j] : order) {
-      if (floor >= value) break;  // neither it nor the farther ones can lower the minimum
-      const std::size_t i = forecast_of_[j];
-      if (i != absent && known(j, i)) value = std::min(value, fields_[j].exact(i, m));
+  /// One obstacle that is not inert, or none (`parts` has at most one such): replaces the
+  /// placeholders (±cap) by its exact clearances wherever the interpolating indices read a value
+  /// (`read_nodes`: both ends of every grid edge whose ends differ in sign, and saddle cells).
+  /// Elsewhere a cell reads signs only (`positive_fraction`). A sample that overlaps the obstacle at
+  /// no sample time but whose exact clearance is ≤ 0 (a contact between sample times) collides: its
+  /// other neighbours are read in turn, until the boundary is where the exact values put it. `c`
+  /// holds the signs of `positive_` (+cap there, −cap elsewhere), which follows the signs of the
+  /// values made exact.
+  void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
+    std::optional<std::pair<std::size_t, std::size_t>> live;
+    for (const auto& part : parts) {
+      if (!fields_[part.first].inert()) live = part;
     }
-    for (const auto& [floor, j] : order) {
-      if (floor >= value) break;
-      const std::size_t i = forecast_of_[j];
-      if (i != absent && !known(j, i)) value = std::min(value, fields_[j].exact_below(i, m, value));
-    }
-    return value;
-  }
-
-  /// (floor, j) of every obstacle that is not inert, `clearance_field::floor_of_all` of sample m,
-  /// ascending (ties by j); found on the first read of m and kept: the rows of the samples read so
-  /// far, one after another in one table. The span is valid until the next call.
-  std::span<const std::pair<double, std::size_t>> by_floor(std::size_t m) {
-    if (by_floor_row_.empty()) {
-      by_floor_count_ = 0;
-      for (const clearance_field& field : fields_) by_floor_count_ += field.inert() ? 0 : 1;
-      by_floor_row_.assign(samples_.size(), absent);
-    }
-    std::size_t& row = by_floor_row_[m];
-    if (row == absent) {
-      row = by_floor_.size();
-      for (std::size_t j = 0; j < fields_.size(); ++j) {
-        if (!fields_[j].inert()) by_floor_.emplace_back(fields_[j].floor_of_all(m), j);
-      }
-      std::sort(by_floor_.begin() + static_cast<std::ptrdiff_t>(row), by_floor_.end());
-    }
-    return std::span(by_floor_).subspan(row, by_floor_count_);
-  }
-
-  /// Replaces the placeholders (±cap) by the exact minimum over the obstacles wherever the
-  /// interpolating indices read a value (`read_nodes`: both ends of every grid edge whose ends
-  /// differ in sign). Elsewhere a cell reads signs only (`positive_fraction`). A sample that
-  /// overlaps no obstacle at a sample time but whose exact clearance is ≤ 0 (a contact between
-  /// sample times) collides: its other neighbours are read in turn, until the boundary is where the
-  /// exact values put it. `c` holds the signs of `positive_` (+cap there, −cap elsewhere), which
-  /// follows the signs of the values made exact.
-  void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> all_parts, clearance_set& c) {
-    // Inert obstacles are +cap everywhere: they cannot lower a minimum.
-    live_parts_.clear();
-    for (const auto& part : all_parts) {
-      if (!fields_[part.first].inert()) live_parts_.push_back(part);
-    }
-    const std::span<const std::pair<std::size_t, std::size_t>> parts = live_parts_;
-    forecast_of_.assign(fields_.size(), absent);
-    for (const auto& [j, i] : parts) forecast_of_[j] = i;
+    if (!live) return;  // +cap everywhere, no read changes a sign
+    const auto [j, i] = *live;
     const std::size_t size = c.size();
     valued_.clear(size);
     std::size_t positives = positive_.count();
@@ -445,7 +398,7 @@ class evaluator {
       read_.subtract(valued_);
       valued_ |= read_;
       read_.for_each([&](std::size_t m) {
-        c[m] = exact_minimum(parts, m);
+        c[m] = fields_[j].exact(i, m);
         if (positive_.test(m) && !(c[m] > 0.0)) {
           positive_.reset(m);
           --positives;
@@ -471,12 +424,6 @@ class evaluator {
   sample_mask positive_;  ///< the positive samples of the set combined last (`combined_parts`)
   sample_mask read_;      ///< scratch of make_read_values_exact: the samples whose values are read next
   sample_mask valued_;    ///< scratch of make_read_values_exact: the samples with their exact value
-  std::vector<std::pair<double, std::size_t>> by_floor_;  ///< the rows of `by_floor`, `by_floor_count_` entries each
-  std::vector<std::size_t> by_floor_row_;                 ///< [m]: where sample m's row starts, or `absent` (empty until the first read)
-  std::size_t by_floor_count_ = 0;                        ///< obstacles that are not inert
-  static constexpr std::size_t absent = std::numeric_limits<std::size_t>::max();
-  std::vector<std::size_t> forecast_of_;  ///< scratch of make_read_values_exact: [j] forecast index, or `absent`
-  std::vector<std::pair<std::size_t, std::size_t>> live_parts_;  ///< scratch of make_read_values_exact
   std::optional<maneuverability_pair> union_indices_;  ///< of the set combined last, when several obstacles are live
   std::vector<std::pair<std::size_t, std::size_t>> union_parts_;  ///< scratch of union_indices: (j, i) with a collision
   std::vector<std::span<const double>> union_spans_;             ///< their sets, every sample

@@ -244,66 +244,6 @@ TEST(collision_sets, a_field_without_recording_refuses_to_give_first_overlaps) {
   EXPECT_THROW((void)field.first_overlap(0, 0), std::logic_error);
 }
 
-TEST(collision_sets, a_bounded_query_is_exact_below_its_ceiling_and_never_hides_a_lower_clearance) {
-  constexpr double cap = 2.0;
-  std::size_t below = 0;
-  std::size_t above = 0;
-  for_each_brute_force_case(testing::property_seed() + 5, [&](const brute_force_case& c, const std::vector<double>& taus) {
-    clearance_field field(c.sweep, c.obstacle, taus, cap);
-    for (std::size_t i = 0; i < taus.size(); ++i) {
-      for (std::size_t m = 0; m < c.p.samples.size(); ++m) {
-        const double truth = std::clamp(c.brute[i][m], -cap, cap);
-        // Ceilings around the true value, asked in an order that exercises the remembered floors.
-        for (const double ceiling : {truth + 0.3, truth - 0.3, truth + 1e-6, truth - 1e-6, 0.5}) {
-          const double bounded = field.exact_below(i, m, ceiling);
-          if (truth < ceiling) {
-            ASSERT_EQ(bounded, truth) << "tau " << taus[i] << " sample " << m << " ceiling " << ceiling << "\n"
-                                      << testing::describe(c.in);
-            ++below;
-          } else {
-            ASSERT_GE(bounded, ceiling) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(c.in);
-            ASSERT_TRUE(bounded == truth || !field.is_exact(i, m));
-            ++above;
-          }
-        }
-      }
-    }
-  });
-  EXPECT_GT(below, 0u);
-  EXPECT_GT(above, 0u);
-}
-
-TEST(collision_sets, the_floor_of_a_sample_is_below_its_clearance_under_every_forecast_time) {
-  // Turning obstacles, and (every other trial) the same obstacles going straight, whose floor has a
-  // closed form after T_h.
-  std::mt19937_64 rng(testing::property_seed() + 19);
-  const std::vector<double> taus = forecast_times(planner_config{});
-  std::size_t straight = 0;
-  for (std::size_t trial = 0; trial < testing::property_count(16); ++trial) {
-    plan_input in = two_obstacle_scene(rng, trial);
-    if (trial % 2 == 0) {
-      for (obstacle_track& track : in.obstacles) {
-        const observation& last = track.history.back();
-        track.history = testing::ctrv_history(last.pose, last.speed, 0.0, last.time);
-      }
-    }
-    const prepared p = prepare(in, 0.05);
-    const ego_sweep sweep(in.ego, p.samples, p.window);
-    for (const forecast_obstacle& obstacle : p.obstacles) {
-      straight += obstacle.motion.yaw_rate == 0.0 ? 1 : 0;
-      clearance_field field(sweep, obstacle, taus, 2.0);
-      const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
-      for (std::size_t m = 0; m < p.samples.size(); ++m) {
-        const double floor = field.floor_of_all(m);
-        for (std::size_t i = 0; i < taus.size(); ++i) {
-          ASSERT_LE(floor, brute[i][m]) << "tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
-        }
-      }
-    }
-  }
-  EXPECT_GT(straight, 0u) << "no obstacle went straight: the closed form was not checked";
-}
-
 TEST(collision_sets, clearance_is_negative_for_every_sampled_collision_and_finds_most_contacts_between_samples) {
   std::mt19937_64 rng(testing::property_seed() + 17);
   const std::size_t count = testing::property_count(12);

@@ -395,16 +395,6 @@ class clearance_field {
   }
   /// The clearance of sample m with forecast time i, equal to the clamped brute-force one.
   double exact(std::size_t i, std::size_t m);
-  /// `exact(i, m)` when that can be below `ceiling` [m]; otherwise a value ≥ `ceiling` (then
-  /// `exact(i, m)` ≥ `ceiling` too), found by a walk that stops looking at a sample time once it
-  /// is provably ≥ ceiling + L·step, and a bound of the straight part. What a minimum over
-  /// obstacles needs from an obstacle that cannot lower it.
-  double exact_below(std::size_t i, std::size_t m, double ceiling);
-  /// A lower bound of the clearance of sample m under every forecast time [m], found once per sample
-  /// and kept: the closest the obstacle's bounding disc can come to the sample's at a sample time,
-  /// less how far the signed distance can fall between sample times (so a bound of the signed
-  /// distance at every time of the window).
-  double floor_of_all(std::size_t m);
   /// True when some sample collides with the obstacle forecast with forecast time i (`collisions`).
   bool collides(std::size_t i) const { return !sampled_[slot(i)].none(); }
   /// When sample m first overlaps the obstacle forecast with forecast time i [s] (signed distance −
@@ -630,9 +620,6 @@ class clearance_field {
   mutable std::vector<clearance_set> sets_;  ///< [slot][m] (empty until `materialized`)
   std::vector<sample_mask> sampled_;  ///< [slot]: the sampled collisions
   std::vector<std::vector<double>> first_overlap_;  ///< [slot][m]: `first_overlap` (only when recorded, for the slots computed)
-  std::vector<std::vector<double>> floor_;  ///< [slot][m]: shown by `exact_below` to be ≤ the clearance (allocated on first use)
-  std::unique_ptr<double[]> floor_all_;  ///< [m]: `floor_of_all` where `floor_all_known_` (allocated, uninitialised, on first use)
-  sample_mask floor_all_known_;
   std::vector<std::vector<std::uint32_t>> argmin_;  ///< [slot][m]: time index of the sampled minimum of an exact value (allocated on first use)
   std::vector<std::vector<std::uint8_t>> exact_;  ///< [slot][m]: the entry of `sets_` is exact (allocated on the slot's first exact value; every entry is exact when inert)
   /// "No entry" in the index tables below and in `argmin_`.
