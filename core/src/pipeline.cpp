@@ -673,8 +673,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       assignment = exhaustive_assignment_search(problem).forecast_index;
     } else {
       // An obstacle that collides with no maneuver under any of its forecast times leaves the safe
-      // sets (spec §9) the same whatever its forecast time: the fast search holds it at τ = 0. Its
-      // clearances still enter every room (the interpolated boundary), so each room stays exact.
+      // sets (spec §9), and every room (each obstacle is interpolated on its own, and one without a
+      // collision is not read), the same whatever its forecast time: the fast search holds it at τ = 0.
       // So does an obstacle that does not turn, whose clearances are the same under every forecast
       // time: τ = 0 is where the exhaustive search's tie rule (the smallest index vector) puts it.
       for (std::size_t j = 0; j < n; ++j) {

@@ -178,9 +178,9 @@ int measure(const options& o) {
     if (s.time() < o.from || (o.until && s.time() > *o.until)) return;
     for (mm::sim::agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
       if (!o.agent.empty() && s.info(id).name != o.agent) continue;
-      if (!s.planned_now(id)) continue;
+      if (!s.planned_now(id) || seen++ % o.every != 0) continue;
       auto input = s.planning_input(id);
-      if (!input || seen++ % o.every != 0) continue;
+      if (!input) continue;
       comparison& c = plans.emplace_back();
       c.time = s.time();
       c.agent = s.info(id).name;
