@@ -63,8 +63,10 @@ class evaluator {
   /// A buffer for a column that is not kept.
   clearance_set& scratch_column() { return scratch_set_; }
 
-  /// Sample-wise minimum over the obstacles, obstacle j at forecast index index[j] (the union of
-  /// the [CSS]); on the fast path exact wherever the indices read it.
+  /// The combined set of the obstacles, obstacle j at forecast index index[j] (the union of the
+  /// [CSS]): the reference's sample-wise minimum of ±1; on the fast path the signs (±cap), with one
+  /// obstacle its exact values wherever the indices read them (`indices` of several read each
+  /// obstacle's own, `union_indices`).
   clearance_set combined(std::span<const std::size_t> index) {
     clearance_set c;
     combine_into(index, c);
@@ -214,8 +216,8 @@ class evaluator {
     combined_parts(scratch_parts_, c, rough);
   }
 
-  /// The sample-wise minimum over `parts` (obstacle, forecast index), into `c`; `rough` (fast path):
-  /// the signs of the sampled collisions only, into `positive_` (`c` is left as it was).
+  /// The combined set of `parts` (obstacle, forecast index) into `c`, as `combined`; `rough` (fast
+  /// path): the signs of the sampled collisions only, into `positive_` (`c` is left as it was).
   void combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c,
                       bool rough = false) {
     if (reference_) {
