@@ -247,7 +247,9 @@ TEST(planner_properties, the_fast_indices_of_several_obstacles_are_the_union_ind
   std::size_t several = 0;
   for (std::size_t trial = 0; trial < count; ++trial) {
     plan_input in = testing::random_scene(rng, {2 + trial % 2, trial % 3 != 0});
-    in.config.resolution = {9, 13};
+    // A row longer than a word of the masks now and then, and without steering one column.
+    in.config.resolution = trial % 5 == 2 ? sampling_resolution{5, 67} : sampling_resolution{9, 13};
+    in.ego.limits.steering = trial % 4 != 3;
     in.config.safety_margin = trial % 4 == 1 ? 0.3 : 0.0;
     const plan_result fast = plan(in);
     SCOPED_TRACE("failing input:\n" + testing::describe(in));
