@@ -389,7 +389,8 @@ class evaluator {
       if (!fields_[part.first].inert()) live = part;
     }
     if (!live) return;  // +cap everywhere, no read changes a sign
-    const auto [j, i] = *live;
+    const std::size_t j = live->first;
+    const std::size_t i = live->second;
     const std::size_t size = c.size();
     valued_.clear(size);
     std::size_t positives = positive_.count();
