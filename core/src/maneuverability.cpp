@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "mm/geometry.hpp"
+#include "union_cells.hpp"
 
 namespace mm {
 
@@ -319,22 +320,15 @@ double maneuverability_index_of_union(const displacement_set& set,
     for (std::size_t ia = 0; ia < rows && all_safe; ++ia) all_safe = row_bits(j, ia) == 0;
   }
   if (all_safe) return 1.0;
-  const std::uint64_t cells = (std::uint64_t{1} << (columns - 1)) - 1;
   std::vector<std::uint64_t> touching(count);  // per obstacle: the cells of the row with a corner ≤ 0
   std::vector<cell_corners> corners;
   corners.reserve(count);
   double total = 0.0;
   double safe = 0.0;
   for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
+    const std::uint64_t covered = detail::union_row_cells(negative, first, columns, ia, touching);
     std::uint64_t touched = 0;
-    std::uint64_t covered = 0;
-    for (std::size_t j = 0; j < count; ++j) {
-      const std::uint64_t lower = row_bits(j, ia);
-      const std::uint64_t upper = row_bits(j, ia + 1);
-      touching[j] = (lower | (lower >> 1) | upper | (upper >> 1)) & cells;
-      touched |= touching[j];
-      covered |= lower & (lower >> 1) & upper & (upper >> 1) & cells;
-    }
+    for (const std::uint64_t t : touching) touched |= t;
     const double* w = set.cell_weights.data() + ia * (columns - 1);
     for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
       total += w[ik];

@@ -16,6 +16,7 @@
 #include "mm/assignment_search.hpp"
 #include "mm/collision_sets.hpp"
 #include "mm/maneuverability.hpp"
+#include "union_cells.hpp"
 
 namespace mm::detail {
 namespace {
@@ -236,29 +237,28 @@ class evaluator {
     positive_.assign_complement(negative_);
     union_indices_.reset();
     if (rough) return;  // the signs are all a rough room reads
-    std::size_t live = 0;
-    for (const auto& part : parts) live += fields_[part.first].inert() ? 0 : 1;
-    if (live >= 2) {
-      union_indices_ = union_indices(parts);
-      c.assign(samples_.size(), clearance_cap);
-      negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
-      return;
+    // Inert obstacles are +cap everywhere: they change no sign and no index.
+    live_parts_.clear();
+    for (const auto& part : parts) {
+      if (!fields_[part.first].inert()) live_parts_.push_back(part);
     }
+    // Several obstacles: the indices now (their reads may make samples collide), the signs after.
+    if (live_parts_.size() >= 2) union_indices_ = union_indices(live_parts_);
     c.assign(samples_.size(), clearance_cap);
     negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
-    make_read_values_exact(parts, c);
+    if (live_parts_.size() == 1) make_read_values_exact(live_parts_.front(), c);
   }
 
-  /// MI− and MI+ under several obstacles (`maneuverability_index_of_union`, each obstacle
-  /// interpolated on its own), making exact every value they read: for each obstacle with a
+  /// MI− and MI+ under several obstacles that are not inert (`live`;
+  /// `maneuverability_index_of_union`, each obstacle interpolated on its own), making exact every value they read: for each obstacle with a
   /// sampled collision, the ends of its sign-changing edges (and the four corners of its saddle
   /// cells) in every cell that no obstacle is ≤ 0 at all four corners of. A value read ≤ 0 where
   /// the obstacle's sampled set had none (a contact between sample times) makes that sample
   /// collide — in `negative_` and `positive_` too — and the cells around it are looked at again.
-  maneuverability_pair union_indices(std::span<const std::pair<std::size_t, std::size_t>> parts) {
+  maneuverability_pair union_indices(std::span<const std::pair<std::size_t, std::size_t>> live) {
     union_parts_.clear();
-    for (const auto& [j, i] : parts) {
-      if (!fields_[j].inert() && fields_[j].collides(i)) union_parts_.emplace_back(j, i);
+    for (const auto& [j, i] : live) {
+      if (fields_[j].collides(i)) union_parts_.emplace_back(j, i);
     }
     const std::size_t count = union_parts_.size();
     union_spans_.clear();
@@ -316,34 +316,30 @@ class evaluator {
           const std::array<std::size_t, 4> node =
               columns == 1 ? std::array<std::size_t, 4>{lower, upper, 0, 0}
                            : std::array<std::size_t, 4>{lower, lower + 1, upper + 1, upper};
+          // Per obstacle, its corners ≤ 0 as bits (counter-clockwise).
+          union_touching_.assign(count, 0);
           bool covered = false;
-          for (std::size_t p = 0; p < count && !covered; ++p) {
-            unsigned bits = 0;
-            for (std::size_t q = 0; q < corners; ++q) bits |= union_negative_[p].test(node[q]) ? 1U << q : 0U;
-            covered = bits == (1U << corners) - 1;
+          for (std::size_t p = 0; p < count; ++p) {
+            for (std::size_t q = 0; q < corners; ++q) union_touching_[p] |= union_negative_[p].test(node[q]) ? 1U << q : 0U;
+            covered = covered || union_touching_[p] == (1U << corners) - 1;
           }
           if (covered) continue;
           for (std::size_t p = 0; p < count; ++p) {
-            unsigned bits = 0;
-            for (std::size_t q = 0; q < corners; ++q) bits |= union_negative_[p].test(node[q]) ? 1U << q : 0U;
-            read_cell(p, bits, corners, node, make_exact);
+            read_cell(p, static_cast<unsigned>(union_touching_[p]), corners, node, make_exact);
           }
         }
       }
       return flipped;
     }
-    const std::uint64_t cells = (std::uint64_t{1} << (columns - 1)) - 1;
+    union_touching_.resize(count);
     for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
-      std::uint64_t covered = 0;
+      const std::uint64_t covered =
+          union_row_cells(std::span(union_negative_).first(count), first, columns, ia, union_touching_);
       for (std::size_t p = 0; p < count; ++p) {
+        std::uint64_t touched = union_touching_[p] & ~covered;
+        if (touched == 0) continue;
         const std::uint64_t lower = union_negative_[p].bits(first + ia * columns, columns);
         const std::uint64_t upper = union_negative_[p].bits(first + (ia + 1) * columns, columns);
-        covered |= lower & (lower >> 1) & upper & (upper >> 1) & cells;
-      }
-      for (std::size_t p = 0; p < count; ++p) {
-        const std::uint64_t lower = union_negative_[p].bits(first + ia * columns, columns);
-        const std::uint64_t upper = union_negative_[p].bits(first + (ia + 1) * columns, columns);
-        std::uint64_t touched = (lower | (lower >> 1) | upper | (upper >> 1)) & cells & ~covered;
         while (touched != 0) {
           const auto ik = static_cast<std::size_t>(std::countr_zero(touched));
           touched &= touched - 1;
@@ -375,7 +371,7 @@ class evaluator {
     }
   }
 
-  /// One obstacle that is not inert, or none (`parts` has at most one such): replaces the
+  /// One obstacle that is not inert, obstacle j at forecast index i (`live`): replaces the
   /// placeholders (±cap) by its exact clearances wherever the interpolating indices read a value
   /// (`read_nodes`: both ends of every grid edge whose ends differ in sign, and saddle cells).
   /// Elsewhere a cell reads signs only (`positive_fraction`). A sample that overlaps the obstacle at
@@ -383,14 +379,9 @@ class evaluator {
   /// other neighbours are read in turn, until the boundary is where the exact values put it. `c`
   /// holds the signs of `positive_` (+cap there, −cap elsewhere), which follows the signs of the
   /// values made exact.
-  void make_read_values_exact(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c) {
-    std::optional<std::pair<std::size_t, std::size_t>> live;
-    for (const auto& part : parts) {
-      if (!fields_[part.first].inert()) live = part;
-    }
-    if (!live) return;  // +cap everywhere, no read changes a sign
-    const std::size_t j = live->first;
-    const std::size_t i = live->second;
+  void make_read_values_exact(std::pair<std::size_t, std::size_t> live, clearance_set& c) {
+    const std::size_t j = live.first;
+    const std::size_t i = live.second;
     const std::size_t size = c.size();
     valued_.clear(size);
     std::size_t positives = positive_.count();
@@ -427,11 +418,13 @@ class evaluator {
   sample_mask positive_;  ///< the positive samples of the set combined last (`combined_parts`)
   sample_mask read_;      ///< scratch of make_read_values_exact: the samples whose values are read next
   sample_mask valued_;    ///< scratch of make_read_values_exact: the samples with their exact value
+  std::vector<std::pair<std::size_t, std::size_t>> live_parts_;  ///< scratch of combined_parts: (j, i) not inert
   std::optional<maneuverability_pair> union_indices_;  ///< of the set combined last, when several obstacles are live
   std::vector<std::pair<std::size_t, std::size_t>> union_parts_;  ///< scratch of union_indices: (j, i) with a collision
   std::vector<std::span<const double>> union_spans_;             ///< their sets, every sample
   std::vector<std::span<const double>> union_family_spans_;      ///< their sets over one family's grid
   std::vector<sample_mask> union_negative_;  ///< their samples ≤ 0: the sampled collisions and the values read ≤ 0
+  std::vector<std::uint64_t> union_touching_;  ///< scratch of read_union_cells: per obstacle, the cells (or corners) it is ≤ 0 at
 };
 
 }  // namespace

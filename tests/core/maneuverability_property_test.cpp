@@ -19,6 +19,13 @@ std::string signs_of(const sample_mask& positive) {
   return text;
 }
 
+/// An ego at a random speed of 1 to 20.9 m/s (one draw of `rng`).
+ego_state ego_at_random_speed(std::mt19937_64& rng) {
+  ego_state ego;
+  ego.speed = 1.0 + static_cast<double>(rng() % 200) / 10.0;
+  return ego;
+}
+
 TEST(maneuverability_properties, read_nodes_by_rows_of_bits_are_the_reference_s_node_by_node) {
   std::mt19937_64 rng(testing::property_seed() + 31);
   const std::size_t count = testing::property_count(600);
@@ -84,8 +91,7 @@ TEST(maneuverability_properties, the_indices_with_and_without_sign_bits_are_the_
   std::uniform_real_distribution<double> value(-3.0, 3.0);
   const std::size_t count = testing::property_count(600);
   for (std::size_t trial = 0; trial < count; ++trial) {
-    ego_state ego;
-    ego.speed = 1.0 + static_cast<double>(rng() % 200) / 10.0;
+    const ego_state ego = ego_at_random_speed(rng);
     // Rows longer than a word now and then (the node-by-node path).
     const sampling_resolution resolution{2 + rng() % 20, trial % 9 == 0 ? 60 + rng() % 10 : 2 + rng() % 40};
     const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, resolution, false, false);
@@ -166,8 +172,7 @@ TEST(maneuverability_properties, the_index_of_a_union_is_the_one_obstacle_index_
   std::uniform_real_distribution<double> value(-3.0, 3.0);
   const std::size_t count = testing::property_count(200);
   for (std::size_t trial = 0; trial < count; ++trial) {
-    ego_state ego;
-    ego.speed = 1.0 + static_cast<double>(rng() % 200) / 10.0;
+    const ego_state ego = ego_at_random_speed(rng);
     const sampling_resolution resolution{2 + rng() % 20, trial % 5 == 0 ? 1 : 2 + rng() % 30};
     const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, resolution, false, false);
     const displacement_set& set = trial % 2 == 0 ? samples.brake : samples.accelerate;
@@ -190,8 +195,7 @@ TEST(maneuverability_properties, the_index_of_a_union_with_sign_bits_is_the_cell
   std::uniform_real_distribution<double> value(-3.0, 3.0);
   const std::size_t count = testing::property_count(300);
   for (std::size_t trial = 0; trial < count; ++trial) {
-    ego_state ego;
-    ego.speed = 1.0 + static_cast<double>(rng() % 200) / 10.0;
+    const ego_state ego = ego_at_random_speed(rng);
     // Now and then one column, or rows longer than a word (the node-by-node path).
     const std::size_t curvatures = trial % 11 == 0 ? 1 : trial % 13 == 0 ? 65 + rng() % 5 : 2 + rng() % 40;
     const sampling_resolution resolution{2 + rng() % 20, curvatures};
