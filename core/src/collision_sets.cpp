@@ -9,6 +9,8 @@
 #include <string>
 #include <variant>
 
+#include "mm/interval_separation.hpp"
+
 namespace mm {
 namespace {
 
@@ -780,6 +782,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
       // the waiting lists (a link per block) need not be copied.
       own.hit = shared.hit;
       own.near = shared.near;
+      own.near_at = shared.near_at;
       own.hit_at = shared.hit_at;
     }
     // The straight part: how close the obstacle comes to the disc that holds every sample's
@@ -808,7 +811,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     own.near.for_each([&](std::size_t p) {
       if (own.hit.test(p)) return;  // it overlaps at a sample time, or on the straight part
       const std::size_t m = order[p];
-      if (!(exact(i, m) <= 0.0)) return;
+      if (!may_touch_between(i, m, own.near_at[p]) || !(exact(i, m) <= 0.0)) return;
       sampled_[i].set(m);
       if (record) {
         const bool walked = !argmin_.empty() && !argmin_[i].empty() && argmin_[i][m] != none;
@@ -849,6 +852,7 @@ void clearance_field::raster(std::size_t k, const obstacle_at& o, raster_state& 
 void clearance_field::raster_state::reset(std::size_t samples, std::size_t times, std::size_t blocks, bool record) {
   hit.clear(samples);
   near.clear(samples);
+  near_at.resize(samples);
   head.assign(times, none);
   if (link.size() < blocks) link.resize(blocks);
   if (record) {
@@ -948,7 +952,7 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     const double face = face_separation(ego_rectangle, o.rectangle);
     // Apart, the exact distance where the margin can still make it (or the whole block) overlap.
     const clearance_bounds c =
-        rectangle_bounds(face, margin, single ? face - margin - rounding_slack <= band : face + spread < margin,
+        rectangle_bounds(face, margin, single ? face - margin - rounding_slack <= 0.0 : face + spread < margin,
                          [&] { return corner_distance(ego_rectangle, o.rectangle); });
     low = c.low;
     high = c.high;
@@ -970,11 +974,13 @@ void clearance_field::raster_block(std::uint32_t index, std::size_t k, const pla
     }
   };
   if (single) {
-    // A single sample: `clearance_at` ≤ 0, or ≤ θ, bit for bit.
+    // A single sample: `clearance_at` ≤ 0 bit for bit; near where a lower bound of it (the face
+    // separation less the margin) is ≤ θ.
     if (high <= 0.0) {
       mark_all();
-    } else if (high <= band) {
+    } else if (low <= band) {
       state.near.set(b.begin);
+      state.near_at[b.begin] = static_cast<std::uint32_t>(k);
       state.wait(until(low, false), index);
     } else {
       state.wait(until(low - band, false), index);
@@ -1014,17 +1020,19 @@ void clearance_field::raster_samples(std::uint32_t index, std::size_t k, const p
     const std::size_t q = b.begin + i;
     if (state.hit.test(q)) continue;
     ++work_.bound_checks;
-    // A single sample's test in `raster_block`: `clearance_at` ≤ 0, or ≤ θ, bit for bit.
+    // A single sample's test in `raster_block`: `clearance_at` ≤ 0 bit for bit; near where the face
+    // separation less the margin is ≤ θ (the corners are needed only where the margin can overlap).
     const double band = state.near.test(q) ? 0.0 : sample_threshold(order[q]);
-    const clearance_bounds c = rectangle_bounds(face[i], margin, face[i] - margin - rounding_slack <= band, [&] {
+    const clearance_bounds c = rectangle_bounds(face[i], margin, face[i] - margin - rounding_slack <= 0.0, [&] {
       const placed_rectangle ego{{p.x[i], p.y[i]}, {p.c[i], p.s[i]}, ego_half_.x, ego_half_.y};
       return corner_distance(ego, o.rectangle);
     });
     if (c.high <= 0.0) {
       state.hit.set(q);
       if (record) state.hit_at[q] = sweep_.times()[k];
-    } else if (c.high <= band) {
+    } else if (c.low <= band) {
       state.near.set(q);
+      state.near_at[q] = static_cast<std::uint32_t>(k);
       gap = std::min(gap, c.low);
     } else {
       gap = std::min(gap, c.low - band);
@@ -1244,6 +1252,47 @@ clearance_field::lower_bound clearance_field::distance_or_bound(const ego_sweep:
   if (separation <= 0.0) return {separation - margin, true};
   if (const double bound = separation - margin - rounding_slack; bound >= enough) return {bound, false};
   return {corner_distance(ego, obstacle) - margin, true};
+}
+
+bool clearance_field::may_touch_between(std::size_t i, std::size_t m, std::size_t first_near) const {
+  if (shapes_ == shape_pair::general) return true;
+  const std::vector<double>& times = sweep_.times();
+  const std::size_t sampled = part_first_[i];
+  // Without a sample time at or after t_s the last pair is cut short: left to `exact`.
+  if (sampled >= times.size()) return true;
+  const double theta = sample_threshold(m);
+  const closing_speed closing = closing_at(distance_rate(m), sweep_.window().time_step);
+  const support_shape ego{ego_half_, 0.0};
+  const support_shape obstacle =
+      shapes_ == shape_pair::rectangles ? support_shape{obstacle_half_, 0.0} : support_shape{{0.0, 0.0}, obstacle_radius_};
+  const double curvature = std::abs(sweep_.samples().maneuvers[m].curvature);
+  const double turn_rate = std::abs(obstacle_.motion.yaw_rate);
+  // Every pair before the one ending at the first time within θ is farther than θ at both ends.
+  // Several steps at once where the gap allows it (the dip grows with the square of the interval).
+  std::size_t stride = 1;
+  std::uint8_t direction = 4;
+  for (std::size_t k = first_near > 0 ? first_near - 1 : 0; k < sampled;) {
+    const std::size_t end = k + std::min(stride, sampled - k);
+    const double duration = times[end] - times[k];
+    const interval_motion ego_motion{sweep_.at(k, m), sweep_.at(end, m), sweep_.largest_acceleration(k, m),
+                                     curvature * sweep_.sample_speed(m) * duration};
+    const interval_motion obstacle_motion{obstacle_pose(i, k), obstacle_pose(i, end), obstacle_acceleration_,
+                                          turn_rate * duration};
+    const interval_separation gap =
+        separated_throughout(ego, ego_motion, obstacle, obstacle_motion, duration, sweep_.window().margin, direction);
+    if (!gap.separated) {
+      if (end == k + 1) return true;
+      stride = (end - k) / 2;
+      continue;
+    }
+    direction = gap.direction;
+    stride = std::min<std::size_t>(2 * (end - k), 8);
+    k = end;
+    // The times after it before the first at which the clearance can be ≤ θ again are farther than
+    // θ, and so is every pair between them.
+    if (gap.gap_at_end > theta) k = std::max(k, first_possible(k, gap.gap_at_end - theta, closing) - 1);
+  }
+  return false;
 }
 
 double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample) {

@@ -87,7 +87,8 @@ TEST(collision_sets, the_raster_finds_exactly_the_samples_that_overlap_at_a_samp
   // Straight after construction, before any value is asked for: the collisions are those of a test
   // of every sample at every sample time before the straight part, of the closed form on it, and of
   // the refined minimum of the samples that came within their θ at a sample time (a contact between
-  // sample times); the entries of those are exact, the others' −cap for a collision and +cap
+  // sample times); the entries made exact on the way (where no direction separated a sample from
+  // the obstacle over a pair of sample times) are exact, the others' −cap for a collision and +cap
   // elsewhere.
   constexpr double cap = 2.0;
   std::size_t colliding = 0;
@@ -122,6 +123,45 @@ TEST(collision_sets, the_raster_finds_exactly_the_samples_that_overlap_at_a_samp
   std::printf("collisions: %zu, of which touch only between sample times (found by their exact clearance): %zu; "
               "such contacts not found: %zu\n",
               colliding, found_between, between_samples);
+}
+
+TEST(collision_sets, contacts_between_sample_times_are_found_as_the_reference_finds_them_at_a_coarse_time_step) {
+  // At a step of 0.2 s many samples touch an obstacle only between sample times: those within θ at
+  // a sample time are looked at, pair of sample times by pair, and only where no direction separates
+  // them over the pair (`separated_throughout`) is their exact clearance asked for. The collisions
+  // must still be the reference's, sample for sample.
+  constexpr double cap = 2.0;
+  std::mt19937_64 rng(testing::property_seed() + 43);
+  const std::size_t count = testing::property_count(40);
+  const std::vector<double> taus = forecast_times(planner_config{});
+  std::size_t between = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const plan_input in = two_obstacle_scene(rng, trial);
+    const prepared p = prepare(in, 0.2);
+    const ego_sweep sweep(in.ego, p.samples, p.window);
+    for (const forecast_obstacle& obstacle : p.obstacles) {
+      const clearance_field field(sweep, obstacle, taus, cap);
+      const auto sampled = collisions_reference(in.ego, p.samples, obstacle, taus, p.window);
+      const std::vector<double> times = sample_times(p.window.duration, p.window.time_step);
+      for (std::size_t i = 0; i < taus.size(); ++i) {
+        const auto first = first_overlaps_reference(in.ego, p.samples, obstacle, taus[i], p.window);
+        for (std::size_t m = 0; m < p.samples.size(); ++m) {
+          ASSERT_EQ(field.collisions(i).test(m), sampled[i].test(m))
+              << "trial " << trial << " tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
+          // A contact found between sample times is put at the sampled minimum's time, where the
+          // sample does not overlap.
+          if (sampled[i].test(m) && first[m] < straight_part_start(obstacle, taus[i], p.window)) {
+            const auto at = std::find(times.begin(), times.end(), first[m]);
+            ASSERT_NE(at, times.end());
+            const maneuver& u = p.samples.maneuvers[m];
+            between += clearance_at(in.ego, u, obstacle, taus[i], first[m], p.window) > 0.0 ? 1 : 0;
+          }
+        }
+      }
+    }
+  }
+  std::printf("contacts between sample times: %zu\n", between);
+  EXPECT_GT(between, count);
 }
 
 TEST(collision_sets, every_pair_of_shapes_gets_the_collisions_and_clearances_of_its_reference) {

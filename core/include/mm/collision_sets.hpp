@@ -354,6 +354,9 @@ class ego_sweep {
 ///   looked at again soon). Every forecast moves no faster than these allow, so a wait found on the
 ///   shared times holds for the straight part of every forecast time that shares them;
 /// - a sample or block known to collide is not looked at again for that τ;
+/// - a sample within θ of the obstacle at a sample time is asked for its exact clearance (a contact
+///   between sample times) only where no fixed direction separates the two over some pair of sample
+///   times (`separated_throughout`, several steps at once where the gap allows);
 /// - on the straight part of the window (from `straight_part_start`) each block is tested once, in
 ///   closed form: its centre's smallest distance over the whole part (`smallest_signed_distance`)
 ///   against the block's largest spread there, after a cheaper test of the reference points'
@@ -475,8 +478,11 @@ class clearance_field {
     /// The samples that overlapped at a sample time (or on the straight part).
     sample_mask hit;
     /// The samples that came within their refinement threshold θ of the obstacle at a sample time
-    /// without overlapping it then: they may touch it between sample times (tree order).
+    /// without overlapping it then, and more: those whose lower bound of the clearance (for two
+    /// rectangles the face separation less the margin) came within θ. Only these may touch it
+    /// between sample times (tree order).
     sample_mask near;
+    std::vector<std::uint32_t> near_at;  ///< [position in tree order]: time index at which it was first near (read only where near)
     std::vector<std::uint32_t> head;  ///< [k]: first block waiting for time index k
     std::vector<std::uint32_t> link;  ///< [block]: the next in the same list (read only for blocks in a list)
     std::vector<double> hit_at;  ///< [position in tree order]: time of the first overlap [s] (read only where hit; empty when not recorded)
@@ -566,6 +572,14 @@ class clearance_field {
   double sample_threshold(std::size_t m) const {
     return refinement_threshold(distance_rate(m), sweep_.window().time_step);
   }
+  /// False when sample m, first near the obstacle forecast with forecast time i at time index
+  /// `first_near` (`raster_state::near`: every earlier sample time is farther than θ), provably does not touch
+  /// it between two neighbouring sample times before the straight part, so that `exact` is > 0:
+  /// every pair of sample times from `first_near` − 1 to the first at or after t_s is
+  /// `separated_throughout` (several at once where the gap allows), but where both ends of a pair are
+  /// farther than θ = L·step/2 (a contact at t between t_k and t_{k+1} would leave one of them within
+  /// L·step/2 of it). For rectangles, and a rectangle and a disc; true for other shapes.
+  bool may_touch_between(std::size_t i, std::size_t m, std::size_t first_near) const;
   /// `refined_minimum` of sample m under forecast time i around time index k, where the clearance
   /// is `at_sample`; searched once per sample when the bracket lies in the times shared by every τ.
   double refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample);

@@ -1,0 +1,67 @@
+#include "mm/interval_separation.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace mm {
+
+namespace {
+
+double support(const support_shape& shape, vec2 n, vec2 heading) {
+  return shape.half.x * std::abs(dot(n, heading)) + shape.half.y * std::abs(cross(n, heading)) + shape.radius;
+}
+
+}  // namespace
+
+interval_separation separated_throughout(const support_shape& a, const interval_motion& motion_a, const support_shape& b,
+                                         const interval_motion& motion_b, double duration, double margin,
+                                         std::uint8_t first_direction) {
+  constexpr std::uint8_t directions = 5;
+  const double dip = (duration * duration * (motion_a.acceleration + motion_b.acceleration) +
+                      norm(a.half) * motion_a.turn * motion_a.turn + norm(b.half) * motion_b.turn * motion_b.turn) /
+                     8.0;
+  // Far above the rounding of the few operations below.
+  const double needed = margin + dip * (1.0 + 1e-9) + 1e-9;
+  const vec2 apart_start = motion_b.start.position - motion_a.start.position;
+  const vec2 apart_end = motion_b.end.position - motion_a.end.position;
+  interval_separation result;
+  const auto separates = [&](vec2 n) {
+    const double at_start = dot(n, apart_start);
+    const double at_end = dot(n, apart_end);
+    if (!(at_start * at_end > 0.0)) return false;
+    const double centres = at_start > 0.0 ? std::min(at_start, at_end) : std::min(-at_start, -at_end);
+    const double a_end = support(a, n, motion_a.end.direction);
+    const double b_end = support(b, n, motion_b.end.direction);
+    const double extent = std::max(support(a, n, motion_a.start.direction), a_end) +
+                          std::max(support(b, n, motion_b.start.direction), b_end);
+    if (!(centres - extent > needed)) return false;
+    result.separated = true;
+    result.gap_at_end = std::abs(at_end) - a_end - b_end - margin - 1e-12;
+    return true;
+  };
+  const auto direction = [&](std::uint8_t index) -> vec2 {
+    switch (index) {
+      case 0: return motion_a.start.direction;
+      case 1: return {-motion_a.start.direction.y, motion_a.start.direction.x};
+      case 2: return motion_b.start.direction;
+      case 3: return {-motion_b.start.direction.y, motion_b.start.direction.x};
+      default: {
+        const double length = norm(apart_start);
+        return length > 0.0 ? (1.0 / length) * apart_start : vec2{0.0, 0.0};
+      }
+    }
+  };
+  for (std::uint8_t tried = 0; tried < directions; ++tried) {
+    const auto index = static_cast<std::uint8_t>((first_direction + tried) % directions);
+    // A disc's axes are no better than any other direction.
+    if ((index == 2 || index == 3) && b.half.x == 0.0 && b.half.y == 0.0) continue;
+    if ((index == 0 || index == 1) && a.half.x == 0.0 && a.half.y == 0.0) continue;
+    if (separates(direction(index))) {
+      result.direction = index;
+      return result;
+    }
+  }
+  return result;
+}
+
+}  // namespace mm
