@@ -1265,8 +1265,11 @@ bool clearance_field::may_touch_between(std::size_t i, std::size_t m, std::size_
   const support_shape ego{ego_half_, 0.0};
   const support_shape obstacle =
       shapes_ == shape_pair::rectangles ? support_shape{obstacle_half_, 0.0} : support_shape{{0.0, 0.0}, obstacle_radius_};
-  const double curvature = std::abs(sweep_.samples().maneuvers[m].curvature);
+  const maneuver& u = sweep_.samples().maneuvers[m];
+  const double curvature = std::abs(u.curvature);
   const double turn_rate = std::abs(obstacle_.motion.yaw_rate);
+  const double horizon = sweep_.window().horizon;
+  const double forecast = taus_[i];
   // Every pair before the one ending at the first time within θ is farther than θ at both ends.
   // Several steps at once where the gap allows it (the dip grows with the square of the interval).
   std::size_t stride = 1;
@@ -1274,10 +1277,18 @@ bool clearance_field::may_touch_between(std::size_t i, std::size_t m, std::size_
   for (std::size_t k = first_near > 0 ? first_near - 1 : 0; k < sampled;) {
     const std::size_t end = k + std::min(stride, sampled - k);
     const double duration = times[end] - times[k];
-    const interval_motion ego_motion{sweep_.at(k, m), sweep_.at(end, m), sweep_.largest_acceleration(k, m),
-                                     curvature * sweep_.sample_speed(m) * duration};
+    // The ego's heading is κ·s(t) on its arc (s'' = a, or 0 where the speed is clamped) and constant
+    // after T_h; the obstacle's turns at ω until τ, then not at all.
+    const double ego_turn = curvature * sweep_.sample_speed(m) * duration;
+    const double ego_bend = times[end] <= horizon || times[k] >= horizon
+                                ? curvature * std::abs(u.acceleration) * duration * duration / 8.0 * (1.0 + 1e-9)
+                                : ego_turn;
+    const double obstacle_turn = turn_rate * duration;
+    const double obstacle_bend = independent_ || times[end] <= forecast || times[k] >= forecast ? 0.0 : obstacle_turn;
+    const interval_motion ego_motion{sweep_.at(k, m), sweep_.at(end, m), sweep_.largest_acceleration(k, m), ego_turn,
+                                     ego_bend};
     const interval_motion obstacle_motion{obstacle_pose(i, k), obstacle_pose(i, end), obstacle_acceleration_,
-                                          turn_rate * duration};
+                                          obstacle_turn, obstacle_bend};
     const interval_separation gap =
         separated_throughout(ego, ego_motion, obstacle, obstacle_motion, duration, sweep_.window().margin, direction);
     if (!gap.separated) {

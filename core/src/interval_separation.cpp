@@ -19,7 +19,8 @@ interval_separation separated_throughout(const support_shape& a, const interval_
   constexpr std::uint8_t directions = 5;
   const double dip = (duration * duration * (motion_a.acceleration + motion_b.acceleration) +
                       norm(a.half) * motion_a.turn * motion_a.turn + norm(b.half) * motion_b.turn * motion_b.turn) /
-                     8.0;
+                         8.0 +
+                     norm(a.half) * motion_a.bend + norm(b.half) * motion_b.bend;
   // Far above the rounding of the few operations below.
   const double needed = margin + dip * (1.0 + 1e-9) + 1e-9;
   const vec2 apart_start = motion_b.start.position - motion_a.start.position;
@@ -27,16 +28,15 @@ interval_separation separated_throughout(const support_shape& a, const interval_
   interval_separation result;
   const auto separates = [&](vec2 n) {
     const double at_start = dot(n, apart_start);
-    const double at_end = dot(n, apart_end);
-    if (!(at_start * at_end > 0.0)) return false;
-    const double centres = at_start > 0.0 ? std::min(at_start, at_end) : std::min(-at_start, -at_end);
-    const double a_end = support(a, n, motion_a.end.direction);
-    const double b_end = support(b, n, motion_b.end.direction);
-    const double extent = std::max(support(a, n, motion_a.start.direction), a_end) +
-                          std::max(support(b, n, motion_b.start.direction), b_end);
-    if (!(centres - extent > needed)) return false;
+    const double side = at_start < 0.0 ? -1.0 : 1.0;
+    const double gap_end =
+        side * dot(n, apart_end) - support(a, n, motion_a.end.direction) - support(b, n, motion_b.end.direction);
+    if (!(gap_end > needed)) return false;
+    const double gap_start =
+        side * at_start - support(a, n, motion_a.start.direction) - support(b, n, motion_b.start.direction);
+    if (!(gap_start > needed)) return false;
     result.separated = true;
-    result.gap_at_end = std::abs(at_end) - a_end - b_end - margin - 1e-12;
+    result.gap_at_end = gap_end - margin - 1e-12;
     return true;
   };
   const auto direction = [&](std::uint8_t index) -> vec2 {

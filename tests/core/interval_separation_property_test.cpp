@@ -54,10 +54,18 @@ struct moving_pair {
     const double top = std::max(speed, speed_after(speed, u.acceleration, horizon, speed_cap));
     const double ego_acceleration =
         from < horizon ? (std::abs(u.acceleration) + std::abs(u.curvature) * top * top) * (1.0 + 1e-9) : 0.0;
-    const interval_motion ego{ego_at(from), ego_at(from + duration), ego_acceleration,
-                              std::abs(u.curvature) * top * duration};
-    const interval_motion other{obstacle_at(from), obstacle_at(from + duration),
-                                obstacle.speed * std::abs(obstacle.yaw_rate), std::abs(obstacle.yaw_rate) * duration};
+    // The headings: κ·s(t) on the arc, where s'' is a or 0, constant after the horizon; the
+    // obstacle's turns at ω until τ, then not at all.
+    const double to = from + duration;
+    const double ego_turn = std::abs(u.curvature) * top * duration;
+    const double ego_bend = to <= horizon || from >= horizon
+                                ? std::abs(u.curvature) * std::abs(u.acceleration) * duration * duration / 8.0 * (1.0 + 1e-9)
+                                : ego_turn;
+    const double obstacle_turn = std::abs(obstacle.yaw_rate) * duration;
+    const double obstacle_bend = to <= forecast_time || from >= forecast_time ? 0.0 : obstacle_turn;
+    const interval_motion ego{ego_at(from), ego_at(to), ego_acceleration, ego_turn, ego_bend};
+    const interval_motion other{obstacle_at(from), obstacle_at(to), obstacle.speed * std::abs(obstacle.yaw_rate),
+                                obstacle_turn, obstacle_bend};
     return separated_throughout(support(ego_shape), ego, support(obstacle_shape), other, duration, margin);
   }
   std::string describe(double from, double duration, double margin) const {
@@ -75,7 +83,7 @@ struct moving_pair {
 TEST(interval_separation_property, a_direction_found_separating_two_moving_footprints_separates_them_at_every_time_between) {
   std::mt19937_64 rng(testing::property_seed() + 41);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
-  const std::size_t count = testing::property_count(8000);
+  const std::size_t count = testing::property_count(16000);
   const double durations[] = {0.025, 0.05, 0.1, 0.2, 0.4};
   std::size_t separated = 0;
   std::size_t close = 0;  // separated with a clearance below 0.2 m somewhere in the interval
@@ -92,8 +100,14 @@ TEST(interval_separation_property, a_direction_found_separating_two_moving_footp
     pair.obstacle.speed = (pedestrian ? 2.5 : 15.0) * unit(rng);
     pair.obstacle.yaw_rate = (pedestrian ? 0.0 : 1.6 * unit(rng) - 0.8);
     pair.forecast_time = 2.0 * unit(rng);
-    const double from = 2.5 * unit(rng);
     const double duration = durations[rng() % 5];
+    // A third of the intervals hold the time at which a heading stops turning (the ego's horizon,
+    // the obstacle's forecast time): there the heading is not linear in time.
+    const double kind = unit(rng);
+    const double into = duration * (0.2 + 0.6 * unit(rng));
+    const double from = kind < 0.17   ? std::max(0.0, pair.horizon - into)
+                        : kind < 0.33 ? std::max(0.0, pair.forecast_time - into)
+                                      : 2.5 * unit(rng);
     const double margin = unit(rng) < 0.5 ? 0.0 : 0.3 * unit(rng);
     pair.obstacle.pose = {{0.0, 0.0}, 2.0 * pi * unit(rng)};
     // Shifting the obstacle's start shifts its whole forecast.

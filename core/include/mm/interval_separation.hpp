@@ -22,6 +22,10 @@ struct interval_motion {
   placement end;        ///< at t_b
   double acceleration;  ///< |p''| of the reference point over the interval [m/s²] (p continuously differentiable)
   double turn;          ///< how far the heading turns over the interval [rad], always the same way
+  /// How far the heading departs from its linear interpolation in time over the interval [rad]:
+  /// 0 for a constant turn rate, |κ|·|a|·Δt²/8 on an arc of curvature κ driven with acceleration
+  /// a (the arc length's departure from its chord times κ), `turn` where the turn rate jumps.
+  double bend = 0.0;
 };
 
 /// Whether one fixed direction separates two moving footprints throughout an interval.
@@ -37,13 +41,15 @@ struct interval_separation {
 
 /// True when some fixed unit direction n separates footprint a and footprint b by more than
 /// `margin` [m] at every time of an interval of `duration` [s] (then their signed distance stays
-/// above the margin: docs/method.md §4.4). Along n the gap is σ n·(p_b − p_a) − h_a(n) − h_b(n):
-/// the first term is C¹ with second derivative at most A = |p_a''| + |p_b''|, so it stays above the
-/// smaller of its ends less A·duration²/8; each support, a function of a heading that turns one way
-/// by at most Δψ with h'' ≥ −|half|, stays below the larger of its ends plus |half|·Δψ²/8. The
-/// directions tried, from `first_direction` on (the one that separated the interval before usually
-/// separates the next): both footprints' axes at t_a and the line of their reference points; the
-/// first that separates is returned.
+/// above the margin: docs/method.md §4.4). Along n the gap is g = σ n·(p_b − p_a) − h_a(n) − h_b(n),
+/// σ the side b is on at t_a. The first term is C¹ with second derivative at most
+/// A = |p_a''| + |p_b''|, so it stays above its chord in time less A·Δt²/8. A support h(ψ), ψ the
+/// heading, has h'' ≥ −|half| (its kinks are convex), so it stays below its chord in ψ plus
+/// |half|·Δψ²/8, and that chord departs from the chord in time by at most |half|·`bend` (h is
+/// |half|-Lipschitz in ψ). So g stays above the smaller of its two ends less the sum of these dips.
+/// The directions tried, from `first_direction` on (the one that separated the interval before
+/// usually separates the next): both footprints' axes at t_a and the line of their reference points
+/// there; the first that separates is returned.
 interval_separation separated_throughout(const support_shape& a, const interval_motion& motion_a, const support_shape& b,
                                          const interval_motion& motion_b, double duration, double margin,
                                          std::uint8_t first_direction = 4);
