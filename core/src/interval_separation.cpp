@@ -17,10 +17,12 @@ interval_separation separated_throughout(const support_shape& a, const interval_
                                          const interval_motion& motion_b, double duration, double margin,
                                          std::uint8_t first_direction) {
   constexpr std::uint8_t directions = 5;
+  const double corner_a = norm(a.half);
+  const double corner_b = norm(b.half);
   const double dip = (duration * duration * (motion_a.acceleration + motion_b.acceleration) +
-                      norm(a.half) * motion_a.turn * motion_a.turn + norm(b.half) * motion_b.turn * motion_b.turn) /
+                      corner_a * motion_a.turn * motion_a.turn + corner_b * motion_b.turn * motion_b.turn) /
                          8.0 +
-                     norm(a.half) * motion_a.bend + norm(b.half) * motion_b.bend;
+                     corner_a * motion_a.bend + corner_b * motion_b.bend;
   // Far above the rounding of the few operations below.
   const double needed = margin + dip * (1.0 + 1e-9) + 1e-9;
   const vec2 apart_start = motion_b.start.position - motion_a.start.position;
@@ -51,11 +53,14 @@ interval_separation separated_throughout(const support_shape& a, const interval_
       }
     }
   };
-  for (std::uint8_t tried = 0; tried < directions; ++tried) {
-    const auto index = static_cast<std::uint8_t>((first_direction + tried) % directions);
-    // A disc's axes are no better than any other direction.
-    if ((index == 2 || index == 3) && b.half.x == 0.0 && b.half.y == 0.0) continue;
-    if ((index == 0 || index == 1) && a.half.x == 0.0 && a.half.y == 0.0) continue;
+  // A disc's axes are no better than any other direction: bit i of `tried_directions` says whether
+  // direction i is tried.
+  unsigned tried_directions = 0b11111U;
+  if (a.half.x == 0.0 && a.half.y == 0.0) tried_directions &= ~0b00011U;
+  if (b.half.x == 0.0 && b.half.y == 0.0) tried_directions &= ~0b01100U;
+  std::uint8_t index = first_direction % directions;
+  for (std::uint8_t tried = 0; tried < directions; ++tried, index = index + 1 == directions ? 0 : index + 1) {
+    if (((tried_directions >> index) & 1U) == 0) continue;
     if (separates(direction(index))) {
       result.direction = index;
       return result;
