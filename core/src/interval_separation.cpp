@@ -58,11 +58,11 @@ interval_separation separated_throughout(const support_shape& a, const interval_
   unsigned tried_directions = 0b11111U;
   if (a.half.x == 0.0 && a.half.y == 0.0) tried_directions &= ~0b00011U;
   if (b.half.x == 0.0 && b.half.y == 0.0) tried_directions &= ~0b01100U;
-  std::uint8_t index = first_direction % directions;
-  for (std::uint8_t tried = 0; tried < directions; ++tried, index = index + 1 == directions ? 0 : index + 1) {
+  unsigned index = first_direction % directions;
+  for (unsigned tried = 0; tried < directions; ++tried, index = index + 1 == directions ? 0 : index + 1) {
     if (((tried_directions >> index) & 1U) == 0) continue;
-    if (separates(direction(index))) {
-      result.direction = index;
+    if (separates(direction(static_cast<std::uint8_t>(index)))) {
+      result.direction = static_cast<std::uint8_t>(index);
       return result;
     }
   }
