@@ -527,7 +527,7 @@ class clearance_field {
   void raster_samples(std::uint32_t index, std::size_t k, const placed_obstacle& o, raster_state& state);
   /// Blocks of at most this many samples that a time leaves undecided have their samples tested
   /// together (`raster_samples`) instead of being halved down to single samples: 8, 16 and 32 took
-  /// the one-obstacle benchmark step the same time within the noise (docs/performance.md).
+  /// the one-obstacle benchmark step the same time within the noise (docs/performance-history.md, seventeenth round).
   static constexpr std::size_t together = 16;
   /// Time indices a block undecided at one sample time is tried at ahead (`overlaps_whole_ahead`):
   /// 2 took the fewest instructions on the one-obstacle benchmark step among 1, 2 and 3 (7.63, 7.61
