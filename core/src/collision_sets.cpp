@@ -1254,7 +1254,7 @@ clearance_field::lower_bound clearance_field::distance_or_bound(const ego_sweep:
   return {corner_distance(ego, obstacle) - margin, true};
 }
 
-bool clearance_field::may_touch_between(std::size_t i, std::size_t m, std::size_t first_near) const {
+bool clearance_field::may_touch_between(std::size_t i, std::size_t m, std::size_t first_near) {
   if (shapes_ == shape_pair::general) return true;
   const std::vector<double>& times = sweep_.times();
   const std::size_t sampled = part_first_[i];
@@ -1271,39 +1271,78 @@ bool clearance_field::may_touch_between(std::size_t i, std::size_t m, std::size_
   const double horizon = sweep_.window().horizon;
   const double forecast = taus_[i];
   // Every pair before the one ending at the first time within θ is farther than θ at both ends.
-  // Several steps at once where the gap allows it (the dip grows with the square of the interval).
+  std::size_t k = first_near > 0 ? first_near - 1 : 0;
   std::size_t stride = 1;
   std::uint8_t direction = 4;
-  for (std::size_t k = first_near > 0 ? first_near - 1 : 0; k < sampled;) {
-    const std::size_t end = k + std::min(stride, sampled - k);
-    const double duration = times[end] - times[k];
-    // The ego's heading is κ·s(t) on its arc (s'' = a, or 0 where the speed is clamped) and constant
-    // after T_h; the obstacle's turns at ω until τ, then not at all.
-    const double ego_turn = curvature * sweep_.sample_speed(m) * duration;
-    const double ego_bend = times[end] <= horizon || times[k] >= horizon
-                                ? curvature * std::abs(u.acceleration) * duration * duration / 8.0 * (1.0 + 1e-9)
-                                : ego_turn;
-    const double obstacle_turn = turn_rate * duration;
-    const double obstacle_bend = independent_ || times[end] <= forecast || times[k] >= forecast ? 0.0 : obstacle_turn;
-    const interval_motion ego_motion{sweep_.at(k, m), sweep_.at(end, m), sweep_.largest_acceleration(k, m), ego_turn,
-                                     ego_bend};
-    const interval_motion obstacle_motion{obstacle_pose(i, k), obstacle_pose(i, end), obstacle_acceleration_,
-                                          obstacle_turn, obstacle_bend};
-    const interval_separation gap =
-        separated_throughout(ego, ego_motion, obstacle, obstacle_motion, duration, sweep_.window().margin, direction);
-    if (!gap.separated) {
-      if (end == k + 1) return true;
-      stride = (end - k) / 2;
-      continue;
+  // A pair that ends at a time t ≤ τ_i is the same for every larger τ (the CTRV placements, no
+  // bend): each sample walks those once, from the same first time within θ (`shared_proof`), and
+  // every forecast time continues from where that walk got to. The slots come in increasing τ, so a
+  // walk made for an earlier one reaches past what a later one shares only where it skipped ahead
+  // (valid under every forecast: L bounds them all).
+  std::size_t limit = sampled;
+  shared_proof* proof = nullptr;
+  // (Without a turn there is one slot: nothing to share.)
+  if (const std::size_t shared_until = std::min(first_straight_[i] - 1, sampled);
+      !independent_ && k < shared_until && first_near < none) {
+    if (shared_proofs_.empty()) shared_proofs_.assign(sweep_.sample_count(), shared_proof{});
+    shared_proof& p = shared_proofs_[m];
+    if (p.first_near == none) p.first_near = static_cast<std::uint32_t>(first_near);
+    if (p.first_near == first_near && p.limit <= shared_until) {
+      if (p.failed) return true;
+      k = std::max<std::size_t>(k, p.next);
+      stride = p.stride;
+      direction = p.direction;
+      p.limit = static_cast<std::uint32_t>(shared_until);
+      limit = shared_until;
+      proof = &p;
     }
-    direction = gap.direction;
-    stride = std::min<std::size_t>(2 * (end - k), 8);
-    k = end;
-    // The times after it before the first at which the clearance can be ≤ θ again are farther than
-    // θ, and so is every pair between them.
-    if (gap.gap_at_end > theta) k = std::max(k, first_possible(k, gap.gap_at_end - theta, closing) - 1);
   }
-  return false;
+  // Every pair from k to the limit proven apart, several steps at once where the gap allows it (the
+  // dip grows with the square of the interval); first the shared ones (then `proof` records how far
+  // they got), then the forecast time's own.
+  for (;;) {
+    while (k < limit) {
+      const std::size_t end = k + std::min(stride, limit - k);
+      const double duration = times[end] - times[k];
+      // The ego's heading is κ·s(t) on its arc (s'' = a, or 0 where the speed is clamped) and
+      // constant after T_h; the obstacle's turns at ω until τ, then not at all.
+      const double ego_turn = curvature * sweep_.sample_speed(m) * duration;
+      const double ego_bend = times[end] <= horizon || times[k] >= horizon
+                                  ? curvature * std::abs(u.acceleration) * duration * duration / 8.0 * (1.0 + 1e-9)
+                                  : ego_turn;
+      const double obstacle_turn = turn_rate * duration;
+      const double obstacle_bend = independent_ || times[end] <= forecast || times[k] >= forecast ? 0.0 : obstacle_turn;
+      const interval_motion ego_motion{sweep_.at(k, m), sweep_.at(end, m), sweep_.largest_acceleration(k, m), ego_turn,
+                                       ego_bend};
+      const interval_motion obstacle_motion{obstacle_pose(i, k), obstacle_pose(i, end), obstacle_acceleration_,
+                                            obstacle_turn, obstacle_bend};
+      const interval_separation gap =
+          separated_throughout(ego, ego_motion, obstacle, obstacle_motion, duration, sweep_.window().margin, direction);
+      if (!gap.separated) {
+        if (end == k + 1) {
+          if (proof != nullptr) {
+            proof->next = static_cast<std::uint32_t>(k);
+            proof->failed = true;
+          }
+          return true;
+        }
+        stride = (end - k) / 2;
+        continue;
+      }
+      direction = gap.direction;
+      stride = std::min<std::size_t>(2 * (end - k), 8);
+      k = end;
+      // The times after it before the first at which the clearance can be ≤ θ again are farther
+      // than θ, and so is every pair between them.
+      if (gap.gap_at_end > theta) k = std::max(k, first_possible(k, gap.gap_at_end - theta, closing) - 1);
+    }
+    if (proof == nullptr) return false;
+    proof->next = static_cast<std::uint32_t>(k);
+    proof->stride = static_cast<std::uint8_t>(stride);
+    proof->direction = direction;
+    proof = nullptr;
+    limit = sampled;
+  }
 }
 
 double clearance_field::refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample) {

@@ -578,8 +578,10 @@ class clearance_field {
   /// every pair of sample times from `first_near` − 1 to the first at or after t_s is
   /// `separated_throughout` (several at once where the gap allows), but where both ends of a pair are
   /// farther than θ = L·step/2 (a contact at t between t_k and t_{k+1} would leave one of them within
-  /// L·step/2 of it). For rectangles, and a rectangle and a disc; true for other shapes.
-  bool may_touch_between(std::size_t i, std::size_t m, std::size_t first_near) const;
+  /// L·step/2 of it). For rectangles, and a rectangle and a disc; true for other shapes. The pairs
+  /// within the times t ≤ τ_i are the same for every larger τ: each sample walks them once
+  /// (`shared_proof`), and each forecast time walks only its own pairs after them.
+  bool may_touch_between(std::size_t i, std::size_t m, std::size_t first_near);
   /// `refined_minimum` of sample m under forecast time i around time index k, where the clearance
   /// is `at_sample`; searched once per sample when the bracket lies in the times shared by every τ.
   double refined_at(std::size_t i, std::size_t m, std::size_t k, double at_sample);
@@ -638,6 +640,17 @@ class clearance_field {
   std::vector<std::vector<std::uint8_t>> exact_;  ///< [slot][m]: the entry of `sets_` is exact (allocated on the slot's first exact value; every entry is exact when inert)
   /// "No entry" in the index tables below and in `argmin_`.
   static constexpr std::uint32_t none = std::numeric_limits<std::uint32_t>::max();
+  /// How far `may_touch_between` has proven sample m apart over the shared times (t ≤ τ, every
+  /// larger τ the same), from the pair before its first time within θ.
+  struct shared_proof {
+    std::uint32_t first_near = none;  ///< the walk's `first_near`; `none`: not walked yet
+    std::uint32_t next = 0;           ///< every pair of sample times from first_near − 1 to `next` is proven apart
+    std::uint32_t limit = 0;          ///< the last time index the walk was allowed to end a pair at
+    std::uint8_t stride = 1;          ///< the walk's state at `next`
+    std::uint8_t direction = 4;
+    bool failed = false;  ///< a pair of neighbouring shared times at `next` is not proven apart
+  };
+  std::vector<shared_proof> shared_proofs_;  ///< [m] (allocated on first use)
   std::vector<prefix_walk> prefix_;          ///< the walks of the samples walked so far
   std::vector<std::uint32_t> prefix_of_;     ///< [m]: sample m's walk in `prefix_`, or `none` (allocated on first use)
   /// Sample m's walk over the shared times, or null when it has none yet.
