@@ -142,8 +142,32 @@ double positive_fraction(double c00, double c10, double c01, double c11) {
 
 namespace {
 
-/// A convex polygon and the half-planes that cut it: the part of the cell safe so far.
-using polygon = std::vector<vec2>;
+/// A convex polygon in the unit cell: the part of the cell safe so far. A cut by one line adds at
+/// most one vertex; the first 12 are kept in place (no allocation for a cell cut up to eight
+/// times), more on the heap.
+class polygon {
+ public:
+  polygon() = default;
+  polygon(const vec2* first, const vec2* last) {
+    for (; first != last; ++first) push_back(*first);
+  }
+  std::size_t size() const { return size_; }
+  vec2 operator[](std::size_t i) const { return heap_.empty() ? local_[i] : heap_[i]; }
+  void push_back(vec2 p) {
+    if (heap_.empty() && size_ < local_.size()) {
+      local_[size_++] = p;
+      return;
+    }
+    if (heap_.empty()) heap_.assign(local_.begin(), local_.end());
+    heap_.push_back(p);
+    ++size_;
+  }
+
+ private:
+  std::array<vec2, 12> local_;
+  std::vector<vec2> heap_;
+  std::size_t size_ = 0;
+};
 
 /// The part of convex `region` on the side of the line through a and b where `inside` lies
 /// (Sutherland–Hodgman against one edge).
@@ -152,7 +176,6 @@ polygon clipped(const polygon& region, vec2 a, vec2 b, vec2 inside) {
   const double side = cross(along, inside - a) < 0.0 ? -1.0 : 1.0;
   const auto height = [&](vec2 x) { return side * cross(along, x - a); };
   polygon out;
-  out.reserve(region.size() + 1);
   for (std::size_t i = 0; i < region.size(); ++i) {
     const vec2 u = region[i];
     const vec2 v = region[(i + 1) % region.size()];
@@ -227,7 +250,7 @@ double safe_fraction(std::span<const cell_corners> obstacles) {
   for (const cell_corners& c : obstacles) {
     if (!(c[0] > 0.0) && !(c[1] > 0.0) && !(c[2] > 0.0) && !(c[3] > 0.0)) return 0.0;
   }
-  return std::clamp(safe_area(polygon(unit_square.begin(), unit_square.end()), obstacles, 0), 0.0, 1.0);
+  return std::clamp(safe_area(polygon(unit_square.data(), unit_square.data() + unit_square.size()), obstacles, 0), 0.0, 1.0);
 }
 
 double safe_fraction(std::span<const std::array<double, 2>> obstacles) {

@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cmath>
+#include <numbers>
 #include <span>
+#include <vector>
 
 #include <random>
 
@@ -78,6 +81,29 @@ TEST(maneuverability, two_obstacles_cutting_different_corners_leave_what_neither
   // Along one column: x < 0.25 unsafe for one, x > 0.5 for the other.
   const std::array<std::array<double, 2>, 2> ends{std::array<double, 2>{-0.25, 0.75}, std::array<double, 2>{0.5, -0.5}};
   EXPECT_NEAR(safe_fraction(std::span<const std::array<double, 2>>(ends)), 0.25, 1e-12);
+}
+
+TEST(maneuverability, a_cell_cut_by_many_obstacles_keeps_the_polygon_they_all_leave) {
+  // n planar clearances c = r − (x − ½, y − ½)·(cos φ, sin φ), φ = 2πj/n: each one's safe region is
+  // the half-plane on the centre's side of a tangent to the circle of radius r about the centre, and
+  // together they leave the regular n-gon circumscribed about it, of area n r² tan(π/n). Sixteen
+  // cuts give a polygon of sixteen vertices (more than the twelve a cell keeps in place).
+  constexpr double r = 0.4;
+  for (const int n : {3, 8, 12, 13, 16, 40}) {
+    std::vector<cell_corners> corners;
+    for (int j = 0; j < n; ++j) {
+      const double phi = 2.0 * std::numbers::pi * j / n;
+      const auto at = [&](double x, double y) { return r - ((x - 0.5) * std::cos(phi) + (y - 0.5) * std::sin(phi)); };
+      corners.push_back({at(0, 0), at(1, 0), at(1, 1), at(0, 1)});
+    }
+    const double polygon = n * r * r * std::tan(std::numbers::pi / n);
+    // For n = 3 the triangle reaches past the cell: the cell clips it.
+    if (n == 3) {
+      EXPECT_LT(safe_fraction(corners), polygon) << n;
+      continue;
+    }
+    EXPECT_NEAR(safe_fraction(corners), polygon, 1e-12) << n << " cuts";
+  }
 }
 
 TEST(maneuverability, one_obstacle_s_safe_fraction_is_its_positive_fraction) {
