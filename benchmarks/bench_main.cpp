@@ -80,6 +80,20 @@ void plan_case(benchmark::State& state) {
   if (const mm::plan_input* in = checked_input(state)) timed_plan(state, *in);
 }
 
+/// S3's costliest step (`costliest_one_obstacle`), replayed once per process and checked like the
+/// `plan` inputs.
+void plan_costliest_case(benchmark::State& state) {
+  static const mm::plan_input in = mm::capture::replay(mm::bench::costliest_one_obstacle().point);
+  const std::size_t interacting = mm::capture::count_interactions(in).interacting;
+  if (interacting != mm::bench::costliest_one_obstacle().interacting) {
+    state.SkipWithError(("the costliest input has " + std::to_string(interacting) +
+                         " interacting obstacles, not 1: find it again (docs/performance.md)")
+                            .c_str());
+    return;
+  }
+  timed_plan(state, in);
+}
+
 /// The captured input planned by one `mm::planner` every iteration, as a vehicle planning every step
 /// at an unchanged speed does: each call starts the planner again (its result is `mm::plan`'s, bit
 /// for bit) but keeps the sampled sets, the tree of blocks and the placements in the ego's frame.
@@ -159,6 +173,10 @@ void register_all() {
         ->Arg(static_cast<long>(c.interacting))
         ->Unit(benchmark::kMicrosecond);
   }
+  repeated(benchmark::RegisterBenchmark("plan_costliest", plan_costliest_case), 5)
+      ->ArgName("obstacles")
+      ->Arg(1)
+      ->Unit(benchmark::kMicrosecond);
   for (const mm::bench::captured_input& c : mm::bench::captured_inputs()) {
     if (c.interacting == 0) continue;
     repeated(benchmark::RegisterBenchmark("planner", planner_case), 5)

@@ -27,4 +27,13 @@ const captured_input& captured(std::size_t interacting) {
   throw std::out_of_range("no captured input with " + std::to_string(interacting) + " interacting obstacles");
 }
 
+const captured_input& costliest_one_obstacle() {
+  static const captured_input input{
+      "obstacles:1", 1, {"s3-left-turn", {}, "A", 4.71},
+      "S3, its costliest step (B driving towards A's path before it turns across it): the most "
+      "instructions of the plans from 4.68 to 4.74 s, and the slowest step of every timed run "
+      "(maneuvermap run s3-left-turn --timing)"};
+  return input;
+}
+
 }  // namespace mm::bench

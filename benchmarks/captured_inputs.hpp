@@ -21,4 +21,8 @@ std::span<const captured_input> captured_inputs();
 /// The captured input with `interacting` interacting obstacles.
 const captured_input& captured(std::size_t interacting);
 
+/// The costliest planning step of S3 (one interacting obstacle), next to the least room of
+/// `captured(1)`: the `plan_costliest` case.
+const captured_input& costliest_one_obstacle();
+
 }  // namespace mm::bench
