@@ -62,18 +62,23 @@ void timed_plan(benchmark::State& state, const mm::plan_input& in) {
   state.counters["assignments"] = static_cast<double>(work.assignments_evaluated);
 }
 
+/// False, with the case skipped with an error, when the replayed input `in` of `c` no longer has the
+/// interacting obstacles it was captured with (scenarios can change).
+bool still_interacting(benchmark::State& state, const mm::bench::captured_input& c, const mm::plan_input& in) {
+  const std::size_t interacting = mm::capture::count_interactions(in).interacting;
+  if (interacting == c.interacting) return true;
+  state.SkipWithError(("the captured input has " + std::to_string(interacting) + " interacting obstacles, not " +
+                       std::to_string(c.interacting) + ": capture it again (tools/capture)")
+                          .c_str());
+  return false;
+}
+
 /// The captured input of `state.range(0)` interacting obstacles, or null (the case skipped with an
-/// error) when the replayed input no longer has them (scenarios can change).
+/// error) when the replayed input no longer has them.
 const mm::plan_input* checked_input(benchmark::State& state) {
   const auto wanted = static_cast<std::size_t>(state.range(0));
   const mm::plan_input& in = input_with(wanted);
-  const std::size_t interacting = mm::capture::count_interactions(in).interacting;
-  if (interacting != wanted) {
-    state.SkipWithError(("the captured input has " + std::to_string(interacting) + " interacting obstacles, not " +
-                         std::to_string(wanted) + ": capture it again (tools/capture)").c_str());
-    return nullptr;
-  }
-  return &in;
+  return still_interacting(state, mm::bench::captured(wanted), in) ? &in : nullptr;
 }
 
 void plan_case(benchmark::State& state) {
@@ -83,15 +88,9 @@ void plan_case(benchmark::State& state) {
 /// S3's costliest step (`costliest_one_obstacle`), replayed once per process and checked like the
 /// `plan` inputs.
 void plan_costliest_case(benchmark::State& state) {
-  static const mm::plan_input in = mm::capture::replay(mm::bench::costliest_one_obstacle().point);
-  const std::size_t interacting = mm::capture::count_interactions(in).interacting;
-  if (interacting != mm::bench::costliest_one_obstacle().interacting) {
-    state.SkipWithError(("the costliest input has " + std::to_string(interacting) +
-                         " interacting obstacles, not 1: find it again (docs/performance.md)")
-                            .c_str());
-    return;
-  }
-  timed_plan(state, in);
+  const mm::bench::captured_input& c = mm::bench::costliest_one_obstacle();
+  static const mm::plan_input in = mm::capture::replay(c.point);
+  if (still_interacting(state, c, in)) timed_plan(state, in);
 }
 
 /// The captured input planned by one `mm::planner` every iteration, as a vehicle planning every step

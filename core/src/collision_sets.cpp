@@ -1320,10 +1320,7 @@ bool clearance_field::may_touch_between(std::size_t i, std::size_t m, std::size_
           separated_throughout(ego, ego_motion, obstacle, obstacle_motion, duration, sweep_.window().margin, direction);
       if (!gap.separated) {
         if (end == k + 1) {
-          if (proof != nullptr) {
-            proof->next = static_cast<std::uint32_t>(k);
-            proof->failed = true;
-          }
+          if (proof != nullptr) proof->failed = true;
           return true;
         }
         stride = (end - k) / 2;

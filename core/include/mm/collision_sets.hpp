@@ -648,7 +648,7 @@ class clearance_field {
     std::uint32_t limit = 0;          ///< the last time index the walk was allowed to end a pair at
     std::uint8_t stride = 1;          ///< the walk's state at `next`
     std::uint8_t direction = 4;
-    bool failed = false;  ///< a pair of neighbouring shared times at `next` is not proven apart
+    bool failed = false;  ///< a pair of neighbouring shared times is not proven apart (every later call: true)
   };
   std::vector<shared_proof> shared_proofs_;  ///< [m] (allocated on first use)
   std::vector<prefix_walk> prefix_;          ///< the walks of the samples walked so far
