@@ -193,6 +193,14 @@ double area(const polygon& region) {
   return 0.5 * twice;
 }
 
+/// Σ of the weights of the cells between the rows and columns of the grid, in index order.
+double total_cell_weight(const displacement_set& set) {
+  const std::size_t cells = (set.acceleration_count - 1) * (set.curvature_count - 1);
+  double total = 0.0;
+  for (std::size_t c = 0; c < cells; ++c) total += set.cell_weights[c];
+  return total;
+}
+
 constexpr std::array<vec2, 4> unit_square{vec2{0.0, 0.0}, vec2{1.0, 0.0}, vec2{1.0, 1.0}, vec2{0.0, 1.0}};
 
 /// The area of `region` ∩ the safe regions of obstacles[first..]: each obstacle's region is one
@@ -346,20 +354,22 @@ double maneuverability_index_of_union(const displacement_set& set,
   std::vector<std::uint64_t> touching(count);  // per obstacle: the cells of the row with a corner ≤ 0
   std::vector<cell_corners> corners;
   corners.reserve(count);
-  double total = 0.0;
+  const double total = total_cell_weight(set);
   double safe = 0.0;
+  const std::uint64_t cells = (std::uint64_t{1} << (columns - 1)) - 1;
   for (std::size_t ia = 0; ia + 1 < rows; ++ia) {
     const std::uint64_t covered = detail::union_row_cells(negative, first, columns, ia, touching);
     std::uint64_t touched = 0;
     for (const std::uint64_t t : touching) touched |= t;
     const double* w = set.cell_weights.data() + ia * (columns - 1);
-    for (std::size_t ik = 0; ik + 1 < columns; ++ik) {
-      total += w[ik];
+    // The cells that add to the safe area, in the order of `maneuverability_index_of_union`'s sum:
+    // a covered cell adds w · 0.
+    for (std::uint64_t adding = cells & ~covered; adding != 0; adding &= adding - 1) {
+      const auto ik = static_cast<std::size_t>(std::countr_zero(adding));
       if (((touched >> ik) & 1U) == 0) {
         safe += w[ik];
         continue;
       }
-      if (((covered >> ik) & 1U) != 0) continue;  // adds w · 0
       const std::size_t lower = ia * columns + ik;
       const std::size_t upper = lower + columns;
       corners.clear();
@@ -398,14 +408,6 @@ bool signs_by_row(const displacement_set& set, const sample_mask& positive, std:
     signs.all_positive = signs.all_positive && bits == full;
   }
   return true;
-}
-
-/// Σ of the weights of the cells between the rows and columns of the grid, in index order.
-double total_cell_weight(const displacement_set& set) {
-  const std::size_t cells = (set.acceleration_count - 1) * (set.curvature_count - 1);
-  double total = 0.0;
-  for (std::size_t c = 0; c < cells; ++c) total += set.cell_weights[c];
-  return total;
 }
 
 /// Visits the cells of grid row ia (between node rows ia and ia + 1) that have a positive corner,
