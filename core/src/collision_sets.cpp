@@ -112,12 +112,25 @@ bool ego_sweep::can_restart(const ego_state& ego, const collision_window& window
     return false;
   }
   if (ego.speed == ego_.speed) return true;
-  // Sampled again: the grids must have the rows and columns they had (their values change).
+  // Sampled again: the grids must have the rows and columns they had, and the rows their
+  // accelerations (the curvatures change with the speed; the rows only where they follow the arc
+  // length, `available_displacements`).
   std::size_t rows = 0;
   for (const grid_view& g : grids_) rows += g.row_start.size();
-  return rows == samples_.brake.acceleration_count + samples_.accelerate.acceleration_count &&
-         !grids_.empty() && grids_.front().curvatures.size() == samples_.brake.curvature_count &&
-         samples_.brake.curvature_count == samples_.accelerate.curvature_count;
+  if (!(rows == samples_.brake.acceleration_count + samples_.accelerate.acceleration_count && !grids_.empty() &&
+        grids_.front().curvatures.size() == samples_.brake.curvature_count &&
+        samples_.brake.curvature_count == samples_.accelerate.curvature_count)) {
+    return false;
+  }
+  for (const grid_view& g : grids_) {
+    for (std::size_t r = 0; r < g.row_start.size(); ++r) {
+      if (g.row_start[r] >= samples_.maneuvers.size() ||
+          samples_.maneuvers[g.row_start[r]].acceleration != g.accelerations[r]) {
+        return false;
+      }
+    }
+  }
+  return true;
 }
 
 void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
@@ -129,8 +142,8 @@ void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
     start(ego, window, start_kind::same_speed);
     return;
   }
-  // Sampled again at a new speed: the tree's shape does not depend on the speed (`add_block`), nor
-  // do the accelerations; only the blocks' curvature extents are taken anew from the new grids.
+  // Sampled again at a new speed with the same rows (`can_restart`): the tree's shape does not
+  // depend on the speed (`add_block`); only the blocks' curvature extents are taken anew.
   std::vector<grid_view> grids = grids_of(samples_);
   if (!same_shape(grids, grids_)) throw std::invalid_argument("ego_sweep::restart: the sampled grids changed shape");
   for (std::size_t g = 0; g < grids.size(); ++g) {

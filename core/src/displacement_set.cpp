@@ -57,6 +57,36 @@ node_cell node_and_cell(double lo, double hi, std::size_t i, std::size_t count) 
   return {node, std::max(lo, node - step / 2.0), std::min(hi, node + step / 2.0)};
 }
 
+/// The acceleration [m/s²] in [lo, hi] whose arc length at the horizon T is s [m], from speed v0
+/// in (0, cap]: `travelled_distance` inverted piece by piece. Stopping before T (|a| ≥ v0/T, s ≤
+/// v0·T/2): s = v0²/(2|a|); reaching the cap before T (s ≥ v0·T + (cap − v0)·T/2): s = cap·T −
+/// (cap − v0)²/(2a); else s = v0·T + a·T²/2.
+double acceleration_for_arc_length(double s, double v0, double horizon, double cap, double lo, double hi) {
+  const double t = horizon;
+  double a = 0.0;
+  if (s <= 0.5 * v0 * t) {
+    a = -v0 * v0 / (2.0 * s);
+  } else if (s >= v0 * t + 0.5 * (cap - v0) * t) {
+    a = (cap - v0) * (cap - v0) / (2.0 * (cap * t - s));
+  } else {
+    a = 2.0 * (s - v0 * t) / (t * t);
+  }
+  return std::clamp(a, lo, hi);
+}
+
+/// True when the arc length at the horizon is affine in the acceleration over [lo, hi]: from a
+/// speed in (0, cap], no acceleration of the range stops the ego or reaches the cap within T
+/// (`travelled_distance`'s one-piece case, with its slack).
+bool arc_length_affine(double v0, double horizon, double cap, double lo, double hi) {
+  if (!(v0 > 0.0 && v0 <= cap)) return false;
+  const auto inside = [&](double a) {
+    const double end = v0 + a * horizon;
+    const double slack = 1e-9 * (cap + std::abs(a) * horizon);
+    return a == 0.0 || (end > slack && end < cap - slack);
+  };
+  return inside(lo) && inside(hi);
+}
+
 }  // namespace
 
 std::string_view to_string(family f) { return f == family::brake ? "brake" : "accelerate"; }
@@ -87,10 +117,34 @@ displacement_set available_displacements(double initial_speed, const ego_limits&
   const auto distance = [&](double a) {
     return travelled_distance(initial_speed, a, horizon, limits.speed_cap);
   };
+  // The rows are evenly spaced in the arc length at T_h, whose density carries the area (s²/2 per
+  // unit of s when straight): evenly spaced in a, the rows of a slow ego's braking family would
+  // crowd where it stops early, a sliver of the set. Where s is affine in a (no stop, no cap
+  // within T_h) the two spacings are the same rows, computed in a.
+  const double cap = limits.speed_cap;
+  const bool by_acceleration = set.acceleration_count < 3 || !(initial_speed > 0.0 && initial_speed <= cap) ||
+                               arc_length_affine(initial_speed, horizon, cap, set.min_acceleration, set.max_acceleration);
+  const double s_min = distance(set.min_acceleration);
+  const double s_max = distance(set.max_acceleration);
+  const auto row_of = [&](std::size_t ia) {
+    if (by_acceleration) return node_and_cell(set.min_acceleration, set.max_acceleration, ia, set.acceleration_count);
+    const node_cell s = node_and_cell(s_min, s_max, ia, set.acceleration_count);
+    const auto to_a = [&](double arc_length, double at_min, double at_max) {
+      if (arc_length <= s_min) return at_min;
+      if (arc_length >= s_max) return at_max;
+      return acceleration_for_arc_length(arc_length, initial_speed, horizon, cap, set.min_acceleration,
+                                         set.max_acceleration);
+    };
+    const double node = ia == 0                           ? set.min_acceleration
+                        : ia + 1 == set.acceleration_count ? set.max_acceleration
+                                                          : to_a(s.node, set.min_acceleration, set.max_acceleration);
+    return node_cell{node, to_a(s.lo, set.min_acceleration, set.min_acceleration),
+                     to_a(s.hi, set.max_acceleration, set.max_acceleration)};
+  };
   std::vector<double> row_arc_lengths;  // s at T_h of each acceleration node
   row_arc_lengths.reserve(set.acceleration_count);
   for (std::size_t ia = 0; ia < set.acceleration_count; ++ia) {
-    const node_cell a = node_and_cell(set.min_acceleration, set.max_acceleration, ia, set.acceleration_count);
+    const node_cell a = row_of(ia);
     const double s = distance(a.node);
     row_arc_lengths.push_back(s);
     const double s0 = node_weights ? distance(a.lo) : 0.0;

@@ -344,11 +344,17 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
   // trial a new speed, at which the samples are sampled again (the tree of blocks is kept).
   std::mt19937_64 rng(testing::property_seed() + 11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
+  std::size_t restarted_at_a_new_speed = 0;
   for (std::size_t trial = 0; trial < testing::property_count(20); ++trial) {
-    const plan_input first = testing::random_scene(rng, {1, false});
+    plan_input first = testing::random_scene(rng, {1, false});
     plan_input second = testing::random_scene(rng, {1, false});
     const bool new_speed = trial % 3 == 2;
     if (!new_speed) second.ego.speed = first.ego.speed;
+    if (trial % 6 == 2) {
+      // Both above d_max·T_h: the rows are evenly spaced in a at either speed, the same rows.
+      first.ego.speed = 7.5 + 12.0 * unit(rng);
+      second.ego.speed = 7.5 + 12.0 * unit(rng);
+    }
     second.ego.limits = first.ego.limits;
     second.ego.shape = first.ego.shape;
     second.nominal.curvature = (2.0 * unit(rng) - 1.0) * max_curvature(first.ego.speed, first.ego.limits);
@@ -370,6 +376,16 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
     // others a new time step and duration.
     const collision_window window = trial % 2 == 0 ? collision_window{1.0, 3.0, 0.05, 0.3 * unit(rng)}
                                                    : collision_window{1.0, 2.5, 0.02 + 0.03 * unit(rng), 0.3 * unit(rng)};
+    if (!restarted.can_restart(second.ego, window)) {
+      // A slow ego's rows follow the arc length (`available_displacements`): at a new speed they
+      // move, and a planner builds its sweep anew.
+      ASSERT_TRUE(new_speed);
+      ASSERT_NE(samples.brake.samples[samples.brake.curvature_count].u.acceleration,
+                prepare(first, 0.05).samples.brake.samples[samples.brake.curvature_count].u.acceleration);
+      EXPECT_THROW(restarted.restart(second.ego, window), std::invalid_argument);
+      continue;
+    }
+    restarted_at_a_new_speed += new_speed ? 1 : 0;
     restarted.restart(second.ego, window);
     const maneuver_samples fresh_samples = prepare(second, 0.05).samples;
     ASSERT_EQ(samples.maneuvers, fresh_samples.maneuvers);
@@ -408,6 +424,7 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
       }
     }
   }
+  EXPECT_GT(restarted_at_a_new_speed, 0u) << "some trials must restart at a new speed";
 }
 
 TEST(collision_sets, a_sweep_restarted_hundreds_of_times_places_as_a_new_one) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
 #include <vector>
 
 namespace mm {
@@ -63,6 +64,45 @@ TEST(displacement_set, grid_spans_the_limits_and_includes_zero_acceleration_and_
   // The end point of a straight full-acceleration maneuver: 10 + 1.5 m ahead.
   EXPECT_NEAR(accel.samples[10 * 15 + 7].end_point.x, 11.5, 1e-12);
   EXPECT_NEAR(accel.samples[10 * 15 + 7].end_point.y, 0.0, 1e-12);
+}
+
+TEST(displacement_set, rows_are_evenly_spaced_in_the_arc_length_where_the_ego_stops_or_reaches_the_cap) {
+  // Braking from below d_max·T_h stops the ego before T_h for the harder decelerations, and from
+  // near the cap accelerating reaches it: s(a) has a kink, and the rows follow s, not a.
+  const ego_limits limits;
+  for (const auto& [v0, f] : {std::pair{0.5, family::brake}, std::pair{1.24, family::brake}, std::pair{3.0, family::brake},
+                              std::pair{6.9, family::brake}, std::pair{28.5, family::accelerate}}) {
+    for (const std::size_t rows : {3u, 15u, 41u}) {
+      const displacement_set set = available_displacements(v0, limits, 1.0, f, {rows, 5});
+      const auto arc_length = [&](std::size_t ia) {
+        return travelled_distance(v0, set.samples[ia * set.curvature_count].u.acceleration, 1.0, limits.speed_cap);
+      };
+      const double s_lo = travelled_distance(v0, set.min_acceleration, 1.0, limits.speed_cap);
+      const double s_hi = travelled_distance(v0, set.max_acceleration, 1.0, limits.speed_cap);
+      EXPECT_EQ(set.samples.front().u.acceleration, set.min_acceleration);
+      EXPECT_EQ(set.samples.back().u.acceleration, set.max_acceleration);
+      for (std::size_t ia = 0; ia < rows; ++ia) {
+        const double expected = s_lo + (s_hi - s_lo) * static_cast<double>(ia) / static_cast<double>(rows - 1);
+        EXPECT_NEAR(arc_length(ia), expected, 1e-12 * s_hi) << "v0 " << v0 << " row " << ia << " of " << rows;
+      }
+      const double expected_area = shoelace_area(s_lo, s_hi, set.max_curvature);
+      EXPECT_NEAR(set.area, expected_area, 1e-4 * expected_area) << "v0 " << v0;
+    }
+  }
+}
+
+TEST(displacement_set, where_the_arc_length_is_affine_in_the_acceleration_the_rows_are_evenly_spaced_in_it) {
+  // No stop and no cap within T_h: the same rows, computed in a, bit for bit.
+  const ego_limits limits;
+  for (const auto& [v0, f] : {std::pair{7.5, family::brake}, std::pair{12.0, family::brake}, std::pair{1.0, family::accelerate},
+                              std::pair{20.0, family::accelerate}}) {
+    const displacement_set set = available_displacements(v0, limits, 1.0, f, {15, 5});
+    const double step = (set.max_acceleration - set.min_acceleration) / 14.0;
+    for (std::size_t ia = 0; ia < 15; ++ia) {
+      const double expected = ia == 14 ? set.max_acceleration : set.min_acceleration + step * static_cast<double>(ia);
+      EXPECT_EQ(set.samples[ia * set.curvature_count].u.acceleration, expected) << "v0 " << v0 << " row " << ia;
+    }
+  }
 }
 
 TEST(displacement_set, brake_family_of_a_stopped_ego_is_degenerate_with_equal_weights) {
