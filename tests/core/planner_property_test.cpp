@@ -301,9 +301,14 @@ TEST(planner_properties, fast_planner_agrees_with_the_reference_within_the_accur
       worst = std::max({worst, std::abs(fast.mi_brake[i] - reference.mi_brake[i]),
                         std::abs(fast.mi_accelerate[i] - reference.mi_accelerate[i])});
     }
+    // Spec §11: τ̄ and the family agree except where the reference's two candidates are within 0.02.
     if (adjustable_margin(reference) > 0.02) {
       EXPECT_EQ(fast.forecast_index, reference.forecast_index);
-      EXPECT_EQ(fast.selected_family, reference.selected_family);
+      if (std::abs(reference.mi_brake_selected - reference.mi_accelerate_selected) > 0.02) {
+        EXPECT_EQ(fast.selected_family, reference.selected_family)
+            << "reference MI- " << reference.mi_brake_selected << " MI+ " << reference.mi_accelerate_selected
+            << ", fast MI- " << fast.mi_brake_selected << " MI+ " << fast.mi_accelerate_selected;
+      }
     }
   }
   EXPECT_GT(compared, 0u) << "the scenes must interact for the comparison to mean anything";
