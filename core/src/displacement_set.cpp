@@ -74,17 +74,18 @@ double acceleration_for_arc_length(double s, double v0, double horizon, double c
   return std::clamp(a, lo, hi);
 }
 
-/// True when the arc length at the horizon is affine in the acceleration over [lo, hi]: from a
-/// speed in (0, cap], no acceleration of the range stops the ego or reaches the cap within T
-/// (`travelled_distance`'s one-piece case, with its slack).
-bool arc_length_affine(double v0, double horizon, double cap, double lo, double hi) {
+/// True when rows evenly spaced in the arc length at the horizon T differ from rows evenly spaced
+/// in a over [lo, hi]: from a speed in (0, cap], some acceleration of the range stops the ego or
+/// reaches the cap within T, so s is not affine in a (outside `travelled_distance`'s one-piece
+/// case, with its slack).
+bool arc_length_has_a_kink(double v0, double horizon, double cap, double lo, double hi) {
   if (!(v0 > 0.0 && v0 <= cap)) return false;
   const auto inside = [&](double a) {
     const double end = v0 + a * horizon;
     const double slack = 1e-9 * (cap + std::abs(a) * horizon);
     return a == 0.0 || (end > slack && end < cap - slack);
   };
-  return inside(lo) && inside(hi);
+  return !inside(lo) || !inside(hi);
 }
 
 }  // namespace
@@ -122,24 +123,20 @@ displacement_set available_displacements(double initial_speed, const ego_limits&
   // crowd where it stops early, a sliver of the set. Where s is affine in a (no stop, no cap
   // within T_h) the two spacings are the same rows, computed in a.
   const double cap = limits.speed_cap;
-  const bool by_acceleration = set.acceleration_count < 3 || !(initial_speed > 0.0 && initial_speed <= cap) ||
-                               arc_length_affine(initial_speed, horizon, cap, set.min_acceleration, set.max_acceleration);
-  const double s_min = distance(set.min_acceleration);
-  const double s_max = distance(set.max_acceleration);
+  const bool by_arc_length = set.acceleration_count >= 3 &&
+                             arc_length_has_a_kink(initial_speed, horizon, cap, set.min_acceleration, set.max_acceleration);
+  const double s_min = by_arc_length ? distance(set.min_acceleration) : 0.0;
+  const double s_max = by_arc_length ? distance(set.max_acceleration) : 0.0;
+  const auto to_acceleration = [&](double arc_length) {
+    if (arc_length <= s_min) return set.min_acceleration;
+    if (arc_length >= s_max) return set.max_acceleration;
+    return acceleration_for_arc_length(arc_length, initial_speed, horizon, cap, set.min_acceleration,
+                                       set.max_acceleration);
+  };
   const auto row_of = [&](std::size_t ia) {
-    if (by_acceleration) return node_and_cell(set.min_acceleration, set.max_acceleration, ia, set.acceleration_count);
+    if (!by_arc_length) return node_and_cell(set.min_acceleration, set.max_acceleration, ia, set.acceleration_count);
     const node_cell s = node_and_cell(s_min, s_max, ia, set.acceleration_count);
-    const auto to_a = [&](double arc_length, double at_min, double at_max) {
-      if (arc_length <= s_min) return at_min;
-      if (arc_length >= s_max) return at_max;
-      return acceleration_for_arc_length(arc_length, initial_speed, horizon, cap, set.min_acceleration,
-                                         set.max_acceleration);
-    };
-    const double node = ia == 0                           ? set.min_acceleration
-                        : ia + 1 == set.acceleration_count ? set.max_acceleration
-                                                          : to_a(s.node, set.min_acceleration, set.max_acceleration);
-    return node_cell{node, to_a(s.lo, set.min_acceleration, set.min_acceleration),
-                     to_a(s.hi, set.max_acceleration, set.max_acceleration)};
+    return node_cell{to_acceleration(s.node), to_acceleration(s.lo), to_acceleration(s.hi)};
   };
   std::vector<double> row_arc_lengths;  // s at T_h of each acceleration node
   row_arc_lengths.reserve(set.acceleration_count);
