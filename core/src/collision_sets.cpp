@@ -106,54 +106,36 @@ ego_sweep::ego_sweep(const ego_state& ego, const maneuver_samples& samples, cons
   start(ego, window, start_kind::fresh);
 }
 
-bool ego_sweep::can_restart(const ego_state& ego, const collision_window& window) const {
+bool ego_sweep::try_restart(const ego_state& ego, const collision_window& window) {
   if (!(ego.limits == ego_.limits) || bounding_radius(ego.shape) != ego_radius_ || window.horizon != window_.horizon ||
       samples_.size() != sample_count_) {
     return false;
-  }
-  if (ego.speed == ego_.speed) return true;
-  // Sampled again: the grids must have the rows and columns they had, and the rows their
-  // accelerations (the curvatures change with the speed; the rows only where they follow the arc
-  // length, `available_displacements`).
-  std::size_t rows = 0;
-  for (const grid_view& g : grids_) rows += g.row_start.size();
-  if (!(rows == samples_.brake.acceleration_count + samples_.accelerate.acceleration_count && !grids_.empty() &&
-        grids_.front().curvatures.size() == samples_.brake.curvature_count &&
-        samples_.brake.curvature_count == samples_.accelerate.curvature_count)) {
-    return false;
-  }
-  for (const grid_view& g : grids_) {
-    for (std::size_t r = 0; r < g.row_start.size(); ++r) {
-      if (g.row_start[r] >= samples_.maneuvers.size() ||
-          samples_.maneuvers[g.row_start[r]].acceleration != g.accelerations[r]) {
-        return false;
-      }
-    }
-  }
-  return true;
-}
-
-void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
-  if (!(ego.limits == ego_.limits) || bounding_radius(ego.shape) != ego_radius_ || window.horizon != window_.horizon ||
-      samples_.size() != sample_count_) {
-    throw std::invalid_argument("ego_sweep::restart: the limits, footprint radius, horizon or sample count differ");
   }
   if (ego.speed == ego_.speed) {
     start(ego, window, start_kind::same_speed);
-    return;
+    return true;
   }
-  // Sampled again at a new speed with the same rows (`can_restart`): the tree's shape does not
-  // depend on the speed (`add_block`); only the blocks' curvature extents are taken anew.
+  // Sampled again at a new speed: the tree's shape does not depend on the speed (`add_block`) as
+  // long as the grids keep their rows and columns and the rows their accelerations (the curvatures
+  // change with the speed; a slow ego's rows follow the arc length and move with it,
+  // `available_displacements`). Only the blocks' curvature extents are taken anew.
   std::vector<grid_view> grids = grids_of(samples_);
-  if (!same_shape(grids, grids_)) throw std::invalid_argument("ego_sweep::restart: the sampled grids changed shape");
+  if (!same_shape(grids, grids_)) return false;
   for (std::size_t g = 0; g < grids.size(); ++g) {
-    if (grids[g].accelerations != grids_[g].accelerations) {
-      throw std::invalid_argument("ego_sweep::restart: the sampled accelerations changed");
-    }
+    if (grids[g].accelerations != grids_[g].accelerations) return false;
   }
   grids_ = std::move(grids);
   std::fill(stale_extents_.begin(), stale_extents_.begin() + static_cast<std::ptrdiff_t>(grid_blocks_), 1);
   start(ego, window, start_kind::new_speed);
+  return true;
+}
+
+void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
+  if (!try_restart(ego, window)) {
+    throw std::invalid_argument(
+        "ego_sweep::restart: the limits, footprint radius, horizon, sample count, grids' shape or rows' "
+        "accelerations differ");
+  }
 }
 
 void ego_sweep::start(const ego_state& ego, const collision_window& window, start_kind kind) {

@@ -577,8 +577,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   if (!options.reference && n > 0) {
     if (!reuse) {
       sweep = &own_sweep.emplace(ego, samples, window);
-    } else if (cache->sweep && cache->sweep->can_restart(ego, window)) {
-      cache->sweep->restart(ego, window);
+    } else if (cache->sweep && cache->sweep->try_restart(ego, window)) {
       sweep = &*cache->sweep;
     } else {
       sweep = &cache->sweep.emplace(ego, samples, window);

@@ -376,17 +376,17 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
     // others a new time step and duration.
     const collision_window window = trial % 2 == 0 ? collision_window{1.0, 3.0, 0.05, 0.3 * unit(rng)}
                                                    : collision_window{1.0, 2.5, 0.02 + 0.03 * unit(rng), 0.3 * unit(rng)};
-    if (!restarted.can_restart(second.ego, window)) {
+    if (!restarted.try_restart(second.ego, window)) {
       // A slow ego's rows follow the arc length (`available_displacements`): at a new speed they
-      // move, and a planner builds its sweep anew.
+      // move, and a planner builds its sweep anew. The refused sweep is unchanged and refuses again.
       ASSERT_TRUE(new_speed);
       ASSERT_NE(samples.brake.samples[samples.brake.curvature_count].u.acceleration,
                 prepare(first, 0.05).samples.brake.samples[samples.brake.curvature_count].u.acceleration);
+      EXPECT_EQ(restarted.ego().speed, first.ego.speed);
       EXPECT_THROW(restarted.restart(second.ego, window), std::invalid_argument);
       continue;
     }
     restarted_at_a_new_speed += new_speed ? 1 : 0;
-    restarted.restart(second.ego, window);
     const maneuver_samples fresh_samples = prepare(second, 0.05).samples;
     ASSERT_EQ(samples.maneuvers, fresh_samples.maneuvers);
     ASSERT_EQ(samples.area_weights, fresh_samples.area_weights);
@@ -472,14 +472,14 @@ TEST(collision_sets, a_sweep_refuses_to_restart_with_other_limits_or_a_grid_of_a
   ego_sweep sweep(in.ego, samples, {1.0, 3.0, 0.05, 0.0});
   plan_input other = in;
   other.ego.limits.max_acceleration += 0.5;
-  EXPECT_FALSE(sweep.can_restart(other.ego, {1.0, 3.0, 0.05, 0.0}));
+  EXPECT_FALSE(sweep.try_restart(other.ego, {1.0, 3.0, 0.05, 0.0}));
   EXPECT_THROW(sweep.restart(other.ego, {1.0, 3.0, 0.05, 0.0}), std::invalid_argument);
   // At a new speed the samples must have been sampled again with the same grid.
   other = in;
   other.ego.speed += 0.5;
   other.config.resolution = {in.config.resolution.accelerations, in.config.resolution.curvatures + 2};
   samples = prepare(other, 0.05).samples;
-  EXPECT_FALSE(sweep.can_restart(other.ego, {1.0, 3.0, 0.05, 0.0}));
+  EXPECT_FALSE(sweep.try_restart(other.ego, {1.0, 3.0, 0.05, 0.0}));
   EXPECT_THROW(sweep.restart(other.ego, {1.0, 3.0, 0.05, 0.0}), std::invalid_argument);
 }
 

@@ -70,8 +70,8 @@ class ego_sweep {
   /// speed the blocks' extents are taken anew). Throws std::invalid_argument when what must be
   /// unchanged changed.
   void restart(const ego_state& ego, const collision_window& window);
-  /// True when `restart(ego, window)` would not throw.
-  bool can_restart(const ego_state& ego, const collision_window& window) const;
+  /// `restart(ego, window)` where it is possible, and true; else false, and the sweep is unchanged.
+  bool try_restart(const ego_state& ego, const collision_window& window);
 
   const ego_state& ego() const { return ego_; }
   const maneuver_samples& samples() const { return samples_; }
