@@ -74,6 +74,11 @@ struct comparison {
   double forecast_margin = 0.0;  ///< the reference's
   double family_margin = 0.0;    ///< the reference's
   double selected_room_difference = 0.0;  ///< |max(MI±_selected) fast − reference|
+  /// With one relevant obstacle: how far the fast planner's pick (τ̄, family) lies below the
+  /// reference's in the reference's own indices, MI_ref(pick_ref) − MI_ref(pick_fast) (0 when they
+  /// agree); with several, 0 where the families agree and 1 where they do not (the reference's
+  /// indices under the fast planner's assignment are not computed).
+  double pick_shortfall = 0.0;
   double fast_ms = 0.0;
   double reference_ms = 0.0;
 };
@@ -131,6 +136,15 @@ void compare(comparison& c, const mm::reference_resolution& reference) {
   c.forecast_margin = pc::forecast_time_margin(ref);
   c.family_margin = pc::family_margin(ref);
   c.selected_room_difference = std::abs(selected_room(fast) - selected_room(ref));
+  if (c.relevant == 1) {
+    const auto reference_index = [&](mm::family f, std::size_t i) {
+      return (f == mm::family::brake ? ref.mi_brake : ref.mi_accelerate).at(i);
+    };
+    c.pick_shortfall = reference_index(ref.selected_family, ref.forecast_index) -
+                       reference_index(fast.selected_family, fast.forecast_index);
+  } else {
+    c.pick_shortfall = fast.selected_family == ref.selected_family ? 0.0 : 1.0;
+  }
 }
 
 /// Compares `pending` on `jobs` threads.
@@ -197,6 +211,7 @@ int measure(const options& o) {
   const comparison* largest = nullptr;
   std::size_t compared = 0, interacting = 0, several = 0, columns_only = 0, over = 0;
   std::size_t forecast_judged = 0, forecast_disagreements = 0, family_judged = 0, family_disagreements = 0;
+  std::size_t picks_judged = 0, picks_below = 0;
   double largest_room_difference = 0.0, fast_ms = 0.0, reference_ms = 0.0, interacting_reference_ms = 0.0;
   for (const comparison& c : plans) {
     fast_ms += c.fast_ms;
@@ -218,9 +233,19 @@ int measure(const options& o) {
       ++forecast_judged;
       forecast_disagreements += c.fast_forecast != c.reference_forecast ? 1 : 0;
     }
+    // Spec §11: the picks may differ where the two candidates are within the bound. Where the
+    // reference's families at its τ̄ differ by more, a fast pick of the other family at the same τ̄
+    // lies that far below; at another τ̄ (allowed when the best τ leads by less than the bound) it
+    // is judged by the reference's index of the fast planner's pick.
     if (c.relevant > 0 && c.family_margin > o.bound) {
       ++family_judged;
-      family_disagreements += c.fast_family != c.reference_family ? 1 : 0;
+      family_disagreements += c.fast_family != c.reference_family && c.pick_shortfall > o.bound ? 1 : 0;
+    }
+    // The whole pick at once, with one relevant obstacle: both checks above in one, and also a
+    // family that is worse at another τ̄.
+    if (c.relevant == 1 && !c.columns_only) {
+      ++picks_judged;
+      picks_below += c.pick_shortfall > o.bound ? 1 : 0;
     }
   }
   std::sort(worst.begin(), worst.end());
@@ -237,10 +262,11 @@ int measure(const options& o) {
                 name_of(largest->worst.which).c_str(), quantile(worst, 0.5), quantile(worst, 0.99), o.bound, over);
   }
   std::printf("selection: tau disagreements %zu of %zu plans with one relevant obstacle whose best tau leads by > %g; "
-              "family disagreements %zu of %zu plans whose selected family leads by > %g; largest |d selected room| "
-              "%.4f\n",
-              forecast_disagreements, forecast_judged, o.bound, family_disagreements, family_judged, o.bound,
-              largest_room_difference);
+              "family disagreements %zu of %zu plans whose selected family leads by > %g; picks more than %g below "
+              "the reference's in its own indices %zu of %zu plans with one relevant obstacle; largest |d selected "
+              "room| %.4f\n",
+              forecast_disagreements, forecast_judged, o.bound, family_disagreements, family_judged, o.bound, o.bound,
+              picks_below, picks_judged, largest_room_difference);
   std::printf("compared by their map columns alone (the reference's exhaustive search over several obstacles too "
               "large; no selection judged): %zu\n",
               columns_only);
@@ -250,19 +276,19 @@ int measure(const options& o) {
   if (!o.csv.empty()) {
     std::ofstream file(o.csv);
     file << "t_s,agent,relevant,compared,columns_only,max_dmi,at_tau_s,at_family,fast_tau_s,reference_tau_s,fast_family,"
-            "reference_family,tau_margin,family_margin,selected_room_difference\n";
+            "reference_family,tau_margin,family_margin,selected_room_difference,pick_shortfall\n";
     for (const comparison& c : plans) {
       char row[512];
-      std::snprintf(row, sizeof row, "%.2f,%s,%zu,%d,%d,%.6f,%.3f,%s,%.3f,%.3f,%s,%s,%.6f,%.6f,%.6f\n", c.time,
+      std::snprintf(row, sizeof row, "%.2f,%s,%zu,%d,%d,%.6f,%.3f,%s,%.3f,%.3f,%s,%s,%.6f,%.6f,%.6f,%.6f\n", c.time,
                     c.agent.c_str(), c.relevant, c.compared ? 1 : 0, c.columns_only ? 1 : 0, c.worst.value, c.worst_tau,
                     name_of(c.worst.which).c_str(), c.fast_tau, c.reference_tau, name_of(c.fast_family).c_str(),
                     name_of(c.reference_family).c_str(), c.forecast_margin, c.family_margin,
-                    c.selected_room_difference);
+                    c.selected_room_difference, c.pick_shortfall);
       file << row;
     }
     if (!file) throw std::runtime_error("--csv " + o.csv + ": cannot write the file");
   }
-  const bool broken = over > 0 || forecast_disagreements > 0 || family_disagreements > 0;
+  const bool broken = over > 0 || forecast_disagreements > 0 || family_disagreements > 0 || picks_below > 0;
   return o.check && broken ? 1 : 0;
 }
 
