@@ -49,6 +49,7 @@ std::vector<ego_sweep::grid_view> ego_sweep::grids_of(const maneuver_samples& sa
     for (std::size_t ia = 0; ia < set.acceleration_count; ++ia) {
       g.row_start.push_back(first + ia * stride);
       g.accelerations.push_back(samples.maneuvers[first + ia * stride].acceleration);
+      g.shape_accelerations.push_back(evenly_spaced_acceleration(set, ia));
     }
   };
   const auto curvatures_of = [&](std::size_t first, std::size_t count) {
@@ -86,7 +87,7 @@ bool ego_sweep::same_shape(const std::vector<grid_view>& a, const std::vector<gr
   if (a.size() != b.size()) return false;
   for (std::size_t g = 0; g < a.size(); ++g) {
     if (a[g].row_start != b[g].row_start || a[g].curvatures.size() != b[g].curvatures.size() ||
-        a[g].ascending != b[g].ascending) {
+        a[g].ascending != b[g].ascending || a[g].shape_accelerations != b[g].shape_accelerations) {
       return false;
     }
   }
@@ -115,26 +116,26 @@ bool ego_sweep::try_restart(const ego_state& ego, const collision_window& window
     start(ego, window, start_kind::same_speed);
     return true;
   }
-  // Sampled again at a new speed: the tree's shape does not depend on the speed (`add_block`) as
-  // long as the grids keep their rows and columns and the rows their accelerations (the curvatures
-  // change with the speed; a slow ego's rows follow the arc length and move with it,
-  // `available_displacements`). Only the blocks' curvature extents are taken anew.
+  // Sampled again at a new speed: the tree's shape does not depend on the speed (`add_block` splits
+  // by the shape accelerations) as long as the grids keep their rows and columns. The blocks'
+  // curvature extents are taken anew, and where the rows' accelerations moved too (a slow ego's
+  // rows follow the arc length, `available_displacements`), all their extents.
   std::vector<grid_view> grids = grids_of(samples_);
   if (!same_shape(grids, grids_)) return false;
-  for (std::size_t g = 0; g < grids.size(); ++g) {
-    if (grids[g].accelerations != grids_[g].accelerations) return false;
-  }
+  bool rows_moved = false;
+  for (std::size_t g = 0; g < grids.size(); ++g) rows_moved = rows_moved || grids[g].accelerations != grids_[g].accelerations;
   grids_ = std::move(grids);
-  std::fill(stale_extents_.begin(), stale_extents_.begin() + static_cast<std::ptrdiff_t>(grid_blocks_), 1);
-  start(ego, window, start_kind::new_speed);
+  // A block not looked at since an earlier restart keeps what that one made stale.
+  const std::uint8_t now_stale = rows_moved ? stale_all : stale_curvatures;
+  for (std::size_t b = 0; b < grid_blocks_; ++b) stale_extents_[b] = std::max(stale_extents_[b], now_stale);
+  start(ego, window, rows_moved ? start_kind::new_rows : start_kind::new_speed);
   return true;
 }
 
 void ego_sweep::restart(const ego_state& ego, const collision_window& window) {
   if (!try_restart(ego, window)) {
     throw std::invalid_argument(
-        "ego_sweep::restart: the limits, footprint radius, horizon, sample count, grids' shape or rows' "
-        "accelerations differ");
+        "ego_sweep::restart: the limits, footprint radius, horizon, sample count or grids' shape differ");
   }
 }
 
@@ -229,9 +230,10 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
                      largest_speed_ * (1.0 + 1e-12)};
   // The nominal-curvature columns' blocks, after the grids' (which depend only on what `restart`
   // requires to be unchanged, and the grids' values). Their shape and accelerations are the
-  // families' acceleration nodes, which a restart keeps (`restart`): it takes only their one
-  // curvature anew (a single column: no curvature spread, the largest |κ| is |κ_nom|).
-  if (kind != start_kind::fresh && blocks_.size() > grid_blocks_) {
+  // families' acceleration nodes, which a restart keeps unless the rows moved (`try_restart`): it
+  // takes only their one curvature anew (a single column: no curvature spread, the largest |κ| is
+  // |κ_nom|).
+  if (kind != start_kind::fresh && kind != start_kind::new_rows && blocks_.size() > grid_blocks_) {
     const double curvature = std::abs(samples_.nominal_curvature);
     for (std::size_t b = grid_blocks_; b < blocks_.size(); ++b) blocks_[b].largest_curvature = curvature;
   } else {
@@ -242,9 +244,11 @@ void ego_sweep::start(const ego_state& ego, const collision_window& window, star
     grid_view nominal;
     for (const family f : {family::brake, family::accelerate}) {
       const index_range r = samples_.nominal_column(f);
+      const displacement_set& set = f == family::brake ? samples_.brake : samples_.accelerate;
       for (std::size_t m = r.begin; m < r.end; ++m) {
         nominal.row_start.push_back(m);
         nominal.accelerations.push_back(samples_.maneuvers[m].acceleration);
+        nominal.shape_accelerations.push_back(evenly_spaced_acceleration(set, m - r.begin));
       }
     }
     if (!nominal.row_start.empty()) {
@@ -301,7 +305,7 @@ std::uint32_t ego_sweep::add_block(const grid_view& grid, std::size_t grid_index
     // a_lat,max · Δκ/κ_max that a change of curvature makes where the lateral limit binds — the
     // spread of the placements at T_h away from low speeds, and independent of the speed, so that
     // the tree's shape is too (`restart` keeps it at a new speed).
-    const double along_a = std::abs(grid.accelerations[r1 - 1] - grid.accelerations[r0]);
+    const double along_a = std::abs(grid.shape_accelerations[r1 - 1] - grid.shape_accelerations[r0]);
     const double columns_spanned = grid.curvatures.size() > 1 ? static_cast<double>(grid.curvatures.size() - 1) : 1.0;
     const double along_k = ego_.limits.max_lateral_acceleration * 2.0 * static_cast<double>(c1 - 1 - c0) / columns_spanned;
     const bool split_rows = c1 - c0 == 1 || (r1 - r0 > 1 && along_a >= along_k);

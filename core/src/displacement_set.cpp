@@ -102,6 +102,10 @@ double area_element_primitive(double arc_length, double curvature) {
   return arc_length * arc_length * arc_length * cubic_sine_defect(curvature * arc_length);
 }
 
+double evenly_spaced_acceleration(const displacement_set& set, std::size_t row) {
+  return node_and_cell(set.min_acceleration, set.max_acceleration, row, set.acceleration_count).node;
+}
+
 displacement_set available_displacements(double initial_speed, const ego_limits& limits,
                                          double horizon, family fam,
                                          const sampling_resolution& resolution, bool node_weights,

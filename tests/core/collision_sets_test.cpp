@@ -345,6 +345,7 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
   std::mt19937_64 rng(testing::property_seed() + 11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t restarted_at_a_new_speed = 0;
+  std::size_t restarted_with_moved_rows = 0;
   for (std::size_t trial = 0; trial < testing::property_count(20); ++trial) {
     plan_input first = testing::random_scene(rng, {1, false});
     plan_input second = testing::random_scene(rng, {1, false});
@@ -354,6 +355,10 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
       // Both above d_max·T_h: the rows are evenly spaced in a at either speed, the same rows.
       first.ego.speed = 7.5 + 12.0 * unit(rng);
       second.ego.speed = 7.5 + 12.0 * unit(rng);
+    } else if (trial % 6 == 5) {
+      // Both below it: the braking rows are evenly spaced in the arc length, and move.
+      first.ego.speed = 1.0 + 5.0 * unit(rng);
+      second.ego.speed = 1.0 + 5.0 * unit(rng);
     }
     second.ego.limits = first.ego.limits;
     second.ego.shape = first.ego.shape;
@@ -376,17 +381,13 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
     // others a new time step and duration.
     const collision_window window = trial % 2 == 0 ? collision_window{1.0, 3.0, 0.05, 0.3 * unit(rng)}
                                                    : collision_window{1.0, 2.5, 0.02 + 0.03 * unit(rng), 0.3 * unit(rng)};
-    if (!restarted.try_restart(second.ego, window)) {
-      // A slow ego's rows follow the arc length (`available_displacements`): at a new speed they
-      // move, and a planner builds its sweep anew. The refused sweep is unchanged and refuses again.
-      ASSERT_TRUE(new_speed);
-      ASSERT_NE(samples.brake.samples[samples.brake.curvature_count].u.acceleration,
-                prepare(first, 0.05).samples.brake.samples[samples.brake.curvature_count].u.acceleration);
-      EXPECT_EQ(restarted.ego().speed, first.ego.speed);
-      EXPECT_THROW(restarted.restart(second.ego, window), std::invalid_argument);
-      continue;
-    }
+    // A slow ego's rows follow the arc length (`available_displacements`): at a new speed they move,
+    // and the tree is kept all the same.
+    const bool rows_moved = samples.brake.samples[samples.brake.curvature_count].u.acceleration !=
+                            prepare(first, 0.05).samples.brake.samples[samples.brake.curvature_count].u.acceleration;
+    ASSERT_TRUE(restarted.try_restart(second.ego, window));
     restarted_at_a_new_speed += new_speed ? 1 : 0;
+    restarted_with_moved_rows += rows_moved ? 1 : 0;
     const maneuver_samples fresh_samples = prepare(second, 0.05).samples;
     ASSERT_EQ(samples.maneuvers, fresh_samples.maneuvers);
     ASSERT_EQ(samples.area_weights, fresh_samples.area_weights);
@@ -425,6 +426,48 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
     }
   }
   EXPECT_GT(restarted_at_a_new_speed, 0u) << "some trials must restart at a new speed";
+  EXPECT_GT(restarted_with_moved_rows, 0u) << "some trials must restart where the rows moved";
+}
+
+TEST(collision_sets, a_sweep_restarted_twice_unlooked_at_takes_the_extents_its_rows_moved_anew) {
+  // Slow, then fast, then fast again: the second restart's rows are the first's, but the blocks not
+  // looked at since the first restart must still take their acceleration extents anew.
+  std::mt19937_64 rng(testing::property_seed() + 14);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (std::size_t trial = 0; trial < testing::property_count(5); ++trial) {
+    plan_input in = testing::random_scene(rng, {1, false});
+    const auto at_speed = [&](double v) {
+      plan_input out = in;
+      out.ego.speed = v;
+      return out;
+    };
+    const plan_input slow = at_speed(1.0 + 5.0 * unit(rng));
+    // Below the cap of 30 m/s by more than a_max·T_h: the rows of either family are evenly spaced in a.
+    const plan_input fast = at_speed(8.0 + 5.0 * unit(rng));
+    const plan_input faster = at_speed(13.5 + 5.0 * unit(rng));
+    ASSERT_LT(faster.ego.speed + faster.ego.limits.max_acceleration * faster.config.displacement_horizon,
+              faster.ego.limits.speed_cap);
+    SCOPED_TRACE(testing::describe(slow));
+    const collision_window window{1.0, 3.0, 0.05, 0.0};
+    maneuver_samples samples = prepare(slow, 0.05).samples;
+    ego_sweep restarted(slow.ego, samples, window);
+    (void)restarted.blocks();
+    samples = prepare(fast, 0.05).samples;
+    ASSERT_TRUE(restarted.try_restart(fast.ego, window));
+    samples = prepare(faster, 0.05).samples;
+    ASSERT_TRUE(restarted.try_restart(faster.ego, window));
+    const maneuver_samples fresh_samples = prepare(faster, 0.05).samples;
+    const ego_sweep fresh(faster.ego, fresh_samples, window);
+    ASSERT_EQ(restarted.blocks().size(), fresh.blocks().size());
+    for (std::size_t b = 0; b < fresh.blocks().size(); ++b) {
+      const ego_sweep::block& x = restarted.blocks()[b];
+      const ego_sweep::block& y = fresh.blocks()[b];
+      ASSERT_TRUE(x.acceleration_spread == y.acceleration_spread && x.top_acceleration == y.top_acceleration &&
+                  x.largest_deceleration == y.largest_deceleration && x.curvature_spread == y.curvature_spread &&
+                  x.largest_curvature == y.largest_curvature)
+          << "block " << b << ": acceleration spread " << x.acceleration_spread << " against " << y.acceleration_spread;
+    }
+  }
 }
 
 TEST(collision_sets, a_sweep_restarted_hundreds_of_times_places_as_a_new_one) {

@@ -154,13 +154,18 @@ class ego_sweep {
   }
   /// `blocks().size()`, without taking any block's extents.
   std::size_t block_count() const { return blocks_.size(); }
-  /// Block `index`: `blocks()[index]`, its curvature extents taken from the grids on first use after
-  /// a restart at a new speed (most blocks of a step are never looked at).
+  /// Block `index`: `blocks()[index]`, its curvature extents (and, where the rows moved, all its
+  /// extents) taken from the grids on first use after a restart at a new speed (most blocks of a
+  /// step are never looked at).
   const block& block_of(std::uint32_t index) const {
-    if (stale_extents_[index] != 0) {
+    if (stale_extents_[index] != stale_none) {
       const block_range& r = ranges_[index];
-      fill_curvature_extents(grids_[r.grid], r, blocks_[index]);
-      stale_extents_[index] = 0;
+      if (stale_extents_[index] == stale_all) {
+        fill_extents(grids_[r.grid], r, blocks_[index]);
+      } else {
+        fill_curvature_extents(grids_[r.grid], r, blocks_[index]);
+      }
+      stale_extents_[index] = stale_none;
     }
     return blocks_[index];
   }
@@ -213,7 +218,11 @@ class ego_sweep {
   /// How a start relates to the previous one: none; the same speed, so the grids' samples and their
   /// speeds are the previous start's (only the nominal-curvature columns' are computed again); or a
   /// new speed, whose grids were sampled again with the same shape.
-  enum class start_kind : std::uint8_t { fresh, same_speed, new_speed };
+  /// new_rows: a new speed at which the rows' accelerations moved too (a slow ego's rows follow the
+  /// arc length), so the nominal-curvature columns' blocks are built anew.
+  enum class start_kind : std::uint8_t { fresh, same_speed, new_speed, new_rows };
+  /// What `block_of` must take anew of a block's extents after a restart at a new speed.
+  enum stale : std::uint8_t { stale_none = 0, stale_curvatures = 1, stale_all = 2 };
   /// Everything that depends on the speed, the pose, the window or the nominal curvature: the
   /// caches, the speeds and reaches, the nominal-curvature columns' blocks.
   void start(const ego_state& ego, const collision_window& window, start_kind kind);
@@ -222,13 +231,17 @@ class ego_sweep {
   struct grid_view {
     std::vector<std::size_t> row_start;  ///< sample index of each row's first column
     std::vector<double> accelerations;   ///< [row] [m/s²]
+    /// [row] [m/s²]: the rows' accelerations were they evenly spaced in a
+    /// (`evenly_spaced_acceleration`), which shape the tree of blocks: equal to `accelerations`
+    /// where the arc length is affine in a, and independent of the speed where it is not.
+    std::vector<double> shape_accelerations;
     std::vector<double> curvatures;      ///< [column] [1/m]
     bool ascending = false;              ///< both lists ascending (non-strictly)
     std::size_t sample(std::size_t r, std::size_t c) const { return row_start[r] + c; }
   };
   /// The grids of the samples: the two families' stacked when they share their curvatures.
   static std::vector<grid_view> grids_of(const maneuver_samples& samples);
-  /// True when two lists of grids have the same rows, columns and orders.
+  /// True when two lists of grids have the same rows, columns, orders and shape accelerations.
   static bool same_shape(const std::vector<grid_view>& a, const std::vector<grid_view>& b);
   /// The grid rows [r0, r1) × columns [c0, c1) of grid `grid` that a block covers.
   struct block_range {
@@ -236,7 +249,7 @@ class ego_sweep {
   };
   /// A block's centre, spreads and largest values from the nodes of its range.
   static void fill_extents(const grid_view& grid, const block_range& range, block& b);
-  /// Its curvature extents alone (what changes with the speed).
+  /// Its curvature extents alone (what changes with the speed where the rows do not move).
   static void fill_curvature_extents(const grid_view& grid, const block_range& range, block& b);
   /// Adds the block of rows [r0, r1) × columns [c0, c1) of `grid` (number `grid_index`) and its
   /// halves; returns its index.

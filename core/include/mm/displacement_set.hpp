@@ -65,6 +65,11 @@ struct displacement_set {
 /// read only `cell_weights`) every node's `area_weight` is 0 and `area` is the sum of the cell
 /// weights, which saves half the work. Without `end_points` (what only drawings read) every
 /// `end_point` is (0, 0), which saves a sine and a cosine per node.
+/// Row `row`'s acceleration [m/s²] were the rows of `set` evenly spaced in a over
+/// [min_acceleration, max_acceleration]: what they are where the arc length is affine in a, bit for
+/// bit (`available_displacements`), and independent of the speed.
+double evenly_spaced_acceleration(const displacement_set& set, std::size_t row);
+
 displacement_set available_displacements(double initial_speed, const ego_limits& limits,
                                          double horizon, family fam,
                                          const sampling_resolution& resolution, bool node_weights = true,
