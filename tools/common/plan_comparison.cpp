@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace mm::plan_comparison {
@@ -34,5 +35,19 @@ double forecast_time_margin(const plan_result& r) {
 }
 
 double family_margin(const plan_result& r) { return std::abs(r.mi_brake_selected - r.mi_accelerate_selected); }
+
+double pick_shortfall(const plan_result& fast, const plan_result& reference) {
+  const auto reference_index = [&](family f, std::size_t i) {
+    const std::vector<double>& column = f == family::brake ? reference.mi_brake : reference.mi_accelerate;
+    if (i >= column.size()) {
+      throw std::invalid_argument("pick_shortfall: forecast index " + std::to_string(i) +
+                                  " outside the reference's map column of " + std::to_string(column.size()));
+    }
+    return column[i];
+  };
+  if (fast.forecast_index == reference.forecast_index && fast.selected_family == reference.selected_family) return 0.0;
+  return reference_index(reference.selected_family, reference.forecast_index) -
+         reference_index(fast.selected_family, fast.forecast_index);
+}
 
 }  // namespace mm::plan_comparison

@@ -137,11 +137,7 @@ void compare(comparison& c, const mm::reference_resolution& reference) {
   c.family_margin = pc::family_margin(ref);
   c.selected_room_difference = std::abs(selected_room(fast) - selected_room(ref));
   if (c.relevant == 1) {
-    const auto reference_index = [&](mm::family f, std::size_t i) {
-      return (f == mm::family::brake ? ref.mi_brake : ref.mi_accelerate).at(i);
-    };
-    c.pick_shortfall = reference_index(ref.selected_family, ref.forecast_index) -
-                       reference_index(fast.selected_family, fast.forecast_index);
+    c.pick_shortfall = pc::pick_shortfall(fast, ref);
   } else {
     c.pick_shortfall = fast.selected_family == ref.selected_family ? 0.0 : 1.0;
   }

@@ -27,4 +27,11 @@ double forecast_time_margin(const plan_result& r);
 /// selected forecast times. Where it exceeds 0.02, spec §11 wants the families to agree.
 double family_margin(const plan_result& r);
 
+/// How far the fast planner's pick (τ̄, family) lies below the reference's in the reference's own
+/// map column [-]: MI_ref(ī_ref, family_ref) − MI_ref(ī_fast, family_fast), 0 when the picks agree.
+/// Spec §11 lets the picks differ where this is at most 0.02. It judges the pick where the map
+/// column decides it, i.e. with one relevant obstacle. Throws std::invalid_argument when a pick's
+/// forecast index lies outside the reference's map column.
+double pick_shortfall(const plan_result& fast, const plan_result& reference);
+
 }  // namespace mm::plan_comparison
