@@ -63,12 +63,12 @@ class ego_sweep {
   /// The sweep of a new planning step whose ego differs from this one's in its pose and perhaps its
   /// speed (the limits, footprint radius and horizon equal), whose samples are the same object,
   /// with only the nominal-curvature columns rewritten (`set_nominal_curvature`) at the same speed,
-  /// or sampled again at the new speed with the same resolution and the same rows' accelerations
-  /// (a slow ego's rows follow the arc length and move with the speed), and whose window may differ in its
-  /// duration, time step and margin: equal, bit for bit, to a new `ego_sweep(ego, samples, window)`,
-  /// without building the tree of blocks again (its shape does not depend on the speed; at a new
-  /// speed the blocks' extents are taken anew). Throws std::invalid_argument when what must be
-  /// unchanged changed.
+  /// or sampled again at the new speed with the same resolution (a slow ego's rows follow the arc
+  /// length and move with the speed), and whose window may differ in its duration, time step and
+  /// margin: equal, bit for bit, to a new `ego_sweep(ego, samples, window)`, without building the
+  /// tree of blocks again (its shape does not depend on the speed, `add_block`; at a new speed the
+  /// blocks' extents are taken anew). Throws std::invalid_argument when what must be unchanged
+  /// changed.
   void restart(const ego_state& ego, const collision_window& window);
   /// `restart(ego, window)` where it is possible, and true; else false, and the sweep is unchanged.
   bool try_restart(const ego_state& ego, const collision_window& window);

@@ -60,16 +60,16 @@ struct displacement_set {
   std::vector<double> cell_weights;
 };
 
-/// The sampled set of displacements reachable with maneuvers of `fam` within `horizon` [T_h, s]
-/// from speed `initial_speed` [m/s] (spec §3). Without `node_weights` (the interpolating indices
-/// read only `cell_weights`) every node's `area_weight` is 0 and `area` is the sum of the cell
-/// weights, which saves half the work. Without `end_points` (what only drawings read) every
-/// `end_point` is (0, 0), which saves a sine and a cosine per node.
 /// Row `row`'s acceleration [m/s²] were the rows of `set` evenly spaced in a over
 /// [min_acceleration, max_acceleration]: what they are where the arc length is affine in a, bit for
 /// bit (`available_displacements`), and independent of the speed.
 double evenly_spaced_acceleration(const displacement_set& set, std::size_t row);
 
+/// The sampled set of displacements reachable with maneuvers of `fam` within `horizon` [T_h, s]
+/// from speed `initial_speed` [m/s] (spec §3). Without `node_weights` (the interpolating indices
+/// read only `cell_weights`) every node's `area_weight` is 0 and `area` is the sum of the cell
+/// weights, which saves half the work. Without `end_points` (what only drawings read) every
+/// `end_point` is (0, 0), which saves a sine and a cosine per node.
 displacement_set available_displacements(double initial_speed, const ego_limits& limits,
                                          double horizon, family fam,
                                          const sampling_resolution& resolution, bool node_weights = true,
