@@ -1,8 +1,10 @@
 // Measures the fast planner against the reference planner (spec §11) on the planning steps of a
 // scenario: runs it, and for every plan of its planning vehicles (or of --agent; every K-th with
 // --every K) plans the same input with `mm::plan` and `mm::plan_reference`, and reports the
-// largest |MI_fast − MI_reference| over forecast times and families, and whether the selected
-// forecast time and family agree where the reference's best candidate leads by more than 0.02.
+// largest |MI_fast − MI_reference| over forecast times and families, whether the selected
+// forecast time and family agree where the reference's best candidate leads by more than 0.02, and,
+// with one relevant obstacle, whether the fast planner's pick lies within 0.02 below the
+// reference's in the reference's own indices (spec §11; `plan_comparison::pick_shortfall`).
 //
 //   maneuvermap_scenario_accuracy SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K]
 //       [--from T] [--until T] [--jobs J] [--ref-accelerations A] [--ref-curvatures C]
@@ -296,7 +298,8 @@ int main(int argc, char** argv) {
   CLI::App app{"Runs a scenario and plans every planning input of its planning vehicles (or of --agent) with both\n"
                "the fast and the reference planner (spec §11): the largest |MI_fast - MI_reference| over forecast\n"
                "times and families, and whether the forecast time and the family agree where the reference's best\n"
-               "candidate leads by more than the bound.\n",
+               "candidate leads by more than the bound; with one relevant obstacle, whether the fast planner's pick\n"
+               "lies within the bound below the reference's in the reference's own indices.\n",
                "maneuvermap_scenario_accuracy"};
   mm::capture::add_scenario_options(app, o);
   cli::add_whole(app, "--every", o.every, 1, cli::unbounded, "Compare every K-th plan only (>= 1)", "K");
