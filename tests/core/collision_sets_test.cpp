@@ -340,8 +340,9 @@ TEST(collision_sets, clearance_of_a_forecast_time_covers_the_shared_turning_part
 }
 
 TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
-  // Two planning steps of one vehicle: a new pose, nominal curvature and window, and in every third
-  // trial a new speed, at which the samples are sampled again (the tree of blocks is kept).
+  // Two planning steps of one vehicle: a new pose, nominal curvature and window, and in two trials of
+  // three a new speed, at which the samples are sampled again (the tree of blocks is kept). The
+  // first five trials (the sanitizer build's count) cover each kind of trial.
   std::mt19937_64 rng(testing::property_seed() + 11);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   std::size_t restarted_at_a_new_speed = 0;
@@ -349,16 +350,16 @@ TEST(collision_sets, a_restarted_sweep_is_a_new_sweep_bit_for_bit) {
   for (std::size_t trial = 0; trial < testing::property_count(20); ++trial) {
     plan_input first = testing::random_scene(rng, {1, false});
     plan_input second = testing::random_scene(rng, {1, false});
-    const bool new_speed = trial % 3 == 2;
+    const bool new_speed = trial % 3 != 0;
     if (!new_speed) second.ego.speed = first.ego.speed;
-    if (trial % 6 == 2) {
-      // Both above d_max·T_h: the rows are evenly spaced in a at either speed, the same rows.
-      first.ego.speed = 7.5 + 12.0 * unit(rng);
-      second.ego.speed = 7.5 + 12.0 * unit(rng);
-    } else if (trial % 6 == 5) {
-      // Both below it: the braking rows are evenly spaced in the arc length, and move.
+    if (trial % 3 == 1) {
+      // Both below d_max·T_h: the braking rows are evenly spaced in the arc length, and move.
       first.ego.speed = 1.0 + 5.0 * unit(rng);
       second.ego.speed = 1.0 + 5.0 * unit(rng);
+    } else if (trial % 6 == 2) {
+      // Both above it: the rows are evenly spaced in a at either speed, the same rows.
+      first.ego.speed = 7.5 + 12.0 * unit(rng);
+      second.ego.speed = 7.5 + 12.0 * unit(rng);
     }
     second.ego.limits = first.ego.limits;
     second.ego.shape = first.ego.shape;
