@@ -32,6 +32,15 @@ TEST(plan_comparison, a_pick_falls_short_by_the_reference_s_own_indices) {
   EXPECT_NEAR(pick_shortfall(picked(2, family::accelerate), reference), 0.06, 1e-12);
 }
 
+TEST(plan_comparison, relevant_obstacles_counts_only_the_relevant_ones) {
+  plan_result r;
+  EXPECT_EQ(relevant_obstacles(r), 0u);
+  r.obstacles.resize(3);
+  r.obstacles[0].relevant = true;
+  r.obstacles[2].relevant = true;
+  EXPECT_EQ(relevant_obstacles(r), 2u);
+}
+
 TEST(plan_comparison, a_pick_outside_the_reference_s_map_column_is_an_error) {
   EXPECT_THROW(pick_shortfall(picked(3, family::brake), picked(1, family::accelerate)), std::invalid_argument);
 }

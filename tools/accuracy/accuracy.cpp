@@ -45,12 +45,6 @@ struct fast_setting {
   }
 };
 
-std::size_t relevant_obstacles(const mm::plan_result& r) {
-  std::size_t n = 0;
-  for (const mm::obstacle_assessment& o : r.obstacles) n += o.relevant ? 1 : 0;
-  return n;
-}
-
 constexpr std::uint64_t max_grid_nodes = 2001;  ///< the planner's bound on a grid's side (config.resolution)
 
 /// One AxC@DT entry of --fast: none when malformed or out of range.
@@ -162,7 +156,7 @@ int measure(const accuracy_options& o) {
       // the reference's own indices (one relevant obstacle: the map column decides the pick); with
       // several, τ̄ and the family where the reference's best forecast time leads by more.
       const bool disagrees =
-          relevant_obstacles(r) == 1
+          mm::plan_comparison::relevant_obstacles(r) == 1
               ? mm::plan_comparison::pick_shortfall(f, r) > 0.02
               : mm::plan_comparison::forecast_time_margin(r) > 0.02 &&
                     (f.forecast_index != r.forecast_index || f.selected_family != r.selected_family);

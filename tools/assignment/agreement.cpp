@@ -12,6 +12,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "mm/plan_comparison.hpp"
 #include "mm/planner.hpp"
 #include "mm/tool_cli.hpp"
 #include "random_scenes.hpp"
@@ -59,9 +60,7 @@ int compare(const assignment_options& o) {
       std::fprintf(stderr, "scene %zu: %s%s\n", s, fast.error.c_str(), exhaustive.error.c_str());
       return 1;
     }
-    std::size_t relevant = 0;
-    for (const mm::obstacle_assessment& a : fast.obstacles) relevant += a.relevant ? 1 : 0;
-    if (relevant < 2 || in.config.policy.kind != mm::forecast_policy_kind::adjustable) continue;
+    if (mm::plan_comparison::relevant_obstacles(fast) < 2 || in.config.policy.kind != mm::forecast_policy_kind::adjustable) continue;
     ++searched;
     const double gap = room(exhaustive) - room(fast);
     shortfall.push_back(gap);

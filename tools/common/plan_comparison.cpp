@@ -36,6 +36,11 @@ double forecast_time_margin(const plan_result& r) {
 
 double family_margin(const plan_result& r) { return std::abs(r.mi_brake_selected - r.mi_accelerate_selected); }
 
+std::size_t relevant_obstacles(const plan_result& r) {
+  return static_cast<std::size_t>(
+      std::count_if(r.obstacles.begin(), r.obstacles.end(), [](const obstacle_assessment& o) { return o.relevant; }));
+}
+
 double pick_shortfall(const plan_result& fast, const plan_result& reference) {
   const auto reference_index = [&](family f, std::size_t i) {
     const std::vector<double>& column = f == family::brake ? reference.mi_brake : reference.mi_accelerate;

@@ -27,6 +27,9 @@ double forecast_time_margin(const plan_result& r);
 /// selected forecast times. Where it exceeds 0.02, spec §11 wants the families to agree.
 double family_margin(const plan_result& r);
 
+/// How many of a plan's obstacles are relevant (spec §9: kept by the planner).
+std::size_t relevant_obstacles(const plan_result& r);
+
 /// How far the fast planner's pick (τ̄, family) lies below the reference's in the reference's own
 /// map column [-]: MI_ref(ī_ref, family_ref) − MI_ref(ī_fast, family_fast), 0 when the picks agree.
 /// Spec §11 lets the picks differ where this is at most 0.02. It judges the pick where the map
