@@ -7,6 +7,7 @@ packages=(
   clang libclang-rt-14-dev            # libFuzzer target for the scenario parser
   libgtest-dev libgmock-dev libbenchmark-dev
   libyaml-cpp-dev nlohmann-json3-dev libcli11-dev libfmt-dev libtbb-dev
+  libpugixml-dev                      # CommonRoad XML files (maneuvermap measure)
   libgoogle-perftools-dev             # tcmalloc, the executables' allocator (docs/performance.md)
   python3 python3-matplotlib python3-numpy
 )

@@ -1,0 +1,63 @@
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mm/footprint.hpp"
+#include "mm/geometry.hpp"
+
+namespace mm::commonroad {
+
+/// One recorded state of a road user (docs/commonroad.md; CommonRoad `initialState` or a
+/// trajectory `state`, always `<exact>` values).
+struct state {
+  std::int64_t step = 0;               ///< time step k; the time is k · `scenario::time_step` [s]
+  vec2 position;                       ///< centre of the shape [m]
+  double orientation = 0.0;            ///< yaw [rad], counter-clockwise from +x, as in the file (not wrapped)
+  double velocity = 0.0;               ///< speed along the orientation [m/s]; recordings give small negatives
+  std::optional<double> yaw_rate;      ///< [rad/s], when the file gives it
+  std::optional<double> acceleration;  ///< [m/s²], when the file gives it
+};
+
+enum class obstacle_role : std::uint8_t { dynamic_obstacle, static_obstacle };
+
+/// A road user or a static obstacle of the file: 2020a `dynamicObstacle` / `staticObstacle`, or a
+/// 2018b `obstacle` with its `role`.
+struct obstacle {
+  std::uint32_t id = 0;
+  obstacle_role role = obstacle_role::dynamic_obstacle;
+  std::string type;     ///< the file's `type`: car, truck, bus, motorcycle, bicycle, pedestrian, parkedVehicle, …
+  /// Relative to the state's position and orientation: a rectangle or disc centred there, or a
+  /// convex polygon in the body frame (a rectangle or circle the file offsets from the centre).
+  footprint shape;
+  /// The initial state, then the trajectory's states, at consecutive steps (a static obstacle: one).
+  std::vector<state> states;
+};
+
+/// A lane of the road network: its two bounds, in the driving direction (for drawing).
+struct lanelet {
+  std::uint32_t id = 0;
+  std::vector<vec2> left_bound;   ///< [m]
+  std::vector<vec2> right_bound;  ///< [m]
+};
+
+/// The start of an ego task of the file (its goal is not read).
+struct planning_problem {
+  std::uint32_t id = 0;
+  state initial;
+};
+
+/// What a CommonRoad scenario file holds, as far as measuring road users needs it.
+struct scenario {
+  std::string benchmark_id;  ///< the root's `benchmarkID`
+  std::string version;       ///< `commonRoadVersion`: "2018b" or "2020a"
+  double time_step = 0.1;    ///< `timeStepSize` [s], > 0
+  std::vector<lanelet> lanelets;
+  std::vector<obstacle> obstacles;  ///< in file order; ids unique among them
+  std::vector<planning_problem> planning_problems;
+};
+
+}  // namespace mm::commonroad
