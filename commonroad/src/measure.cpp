@@ -1,0 +1,184 @@
+#include "mm/commonroad/measure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+namespace mm::commonroad {
+
+namespace {
+
+const obstacle* find_obstacle(const scenario& s, std::uint32_t id) {
+  for (const obstacle& o : s.obstacles) {
+    if (o.id == id) return &o;
+  }
+  return nullptr;
+}
+
+bool is_pedestrian(const obstacle& o) { return o.type == "pedestrian"; }
+
+double step_time(const scenario& s, std::int64_t step) { return static_cast<double>(step) * s.time_step; }
+
+/// The state of `o` at `step`, or null when it is not recorded then (states are at consecutive steps).
+const state* state_at(const obstacle& o, std::int64_t step) {
+  if (o.states.empty()) return nullptr;
+  const std::int64_t first = o.states.front().step;
+  if (step < first) return nullptr;
+  // Unsigned: no overflow whatever steps a file gives.
+  const std::uint64_t index = static_cast<std::uint64_t>(step) - static_cast<std::uint64_t>(first);
+  if (index >= o.states.size()) return nullptr;
+  return &o.states[static_cast<std::size_t>(index)];
+}
+
+std::string list_ids(const std::vector<std::uint32_t>& ids) {
+  std::string text;
+  for (std::size_t i = 0; i < ids.size() && i < 20; ++i) text += (i ? ", " : "") + std::to_string(ids[i]);
+  if (ids.size() > 20) text += ", …";
+  return text.empty() ? "none" : text;
+}
+
+/// The measured road user, or `measure_error` saying why it cannot be measured.
+const obstacle& measured(const scenario& s, std::uint32_t agent) {
+  const obstacle* o = find_obstacle(s, agent);
+  const auto error = [&](const std::string& why) {
+    return measure_error("road user " + std::to_string(agent) + ": " + why +
+                         "; the road users that can be measured are: " + list_ids(measurable_road_users(s)));
+  };
+  if (o == nullptr) throw error("no obstacle has this id");
+  if (o->role == obstacle_role::static_obstacle) throw error("a static obstacle (" + o->type + ")");
+  if (is_pedestrian(*o)) throw error("a pedestrian: the planner's ego is a vehicle that steers along arcs (spec §3)");
+  return *o;
+}
+
+observation observed(const scenario& s, const state& x) {
+  return {step_time(s, x.step), pose{x.position, wrap_angle(x.orientation)}, std::max(x.velocity, 0.0)};
+}
+
+obstacle_kind kind_of(const obstacle& o) {
+  if (o.role == obstacle_role::static_obstacle) return obstacle_kind::static_obstacle;
+  return is_pedestrian(o) ? obstacle_kind::pedestrian : obstacle_kind::vehicle;
+}
+
+double largest_speed(const obstacle& o) {
+  double v = 0.0;
+  for (const state& x : o.states) v = std::max(v, x.velocity);
+  return v;
+}
+
+}  // namespace
+
+plan_input planning_input(const scenario& s, const measure_options& options, std::int64_t step,
+                          std::vector<std::uint32_t>* ids) {
+  const obstacle& agent = measured(s, options.agent);
+  const state* now = state_at(agent, step);
+  if (now == nullptr) {
+    throw measure_error("road user " + std::to_string(options.agent) + " is not recorded at step " +
+                        std::to_string(step) + ": its states run from step " +
+                        std::to_string(agent.states.front().step) + " to " + std::to_string(agent.states.back().step));
+  }
+  plan_input in;
+  in.time = step_time(s, step);
+  in.config = options.config;
+  in.ego.pose = pose{now->position, wrap_angle(now->orientation)};
+  in.ego.speed = std::max(now->velocity, 0.0);
+  in.ego.shape = agent.shape;
+  in.ego.limits = options.limits;
+  in.ego.limits.speed_cap = std::max(in.ego.limits.speed_cap, largest_speed(agent));
+  in.nominal = recorded_maneuver(agent, static_cast<std::size_t>(now - agent.states.data()), s.time_step);
+  if (ids != nullptr) ids->clear();
+
+  const double window = options.config.history_window;
+  for (const obstacle& o : s.obstacles) {
+    if (o.id == agent.id || o.states.empty()) continue;
+    obstacle_track track;
+    track.id = o.id;
+    track.kind = kind_of(o);
+    track.shape = o.shape;
+    if (track.kind == obstacle_kind::static_obstacle) {
+      observation x = observed(s, o.states.front());
+      x.time = in.time;  // a static obstacle stands where it was placed, whenever that was written
+      x.speed = 0.0;
+      track.history.push_back(x);
+    } else {
+      const state* last = state_at(o, step);
+      if (last == nullptr || last == &o.states.front()) continue;  // not there, or seen once only
+      const auto end = static_cast<std::ptrdiff_t>(last - o.states.data()) + 1;
+      std::ptrdiff_t begin = end - 2;
+      while (begin > 0 && in.time - step_time(s, o.states[static_cast<std::size_t>(begin - 1)].step) <= window + 1e-9) {
+        --begin;
+      }
+      for (std::ptrdiff_t i = begin; i < end; ++i) track.history.push_back(observed(s, o.states[static_cast<std::size_t>(i)]));
+    }
+    in.obstacles.push_back(std::move(track));
+    if (ids != nullptr) ids->push_back(o.id);
+  }
+  return in;
+}
+
+measurement measure(const scenario& s, const measure_options& options) {
+  const obstacle& agent = measured(s, options.agent);
+  measurement m;
+  m.agent = agent.id;
+  planner p;
+  for (const state& x : agent.states) {
+    measured_step step;
+    step.step = x.step;
+    step.time = step_time(s, x.step);
+    const plan_input in = planning_input(s, options, x.step, &step.obstacle_ids);
+    step.ego = in.ego;
+    step.recorded = in.nominal;
+    step.result = p.plan(in);
+    if (!step.result.ok()) {
+      throw measure_error("road user " + std::to_string(agent.id) + " at step " + std::to_string(x.step) + " (t = " +
+                          std::to_string(step.time) + " s): the planner refused its input: " + step.result.error);
+    }
+    m.steps.push_back(std::move(step));
+  }
+  return m;
+}
+
+maneuver recorded_maneuver(const obstacle& o, std::size_t k, double dt) {
+  if (o.states.size() < 2) return {};
+  const std::size_t from = k + 1 < o.states.size() ? k : k - 1;
+  const state& a = o.states[from];
+  const state& b = o.states[from + 1];
+  maneuver u;
+  u.acceleration = (std::max(b.velocity, 0.0) - std::max(a.velocity, 0.0)) / dt;
+  const double distance = std::hypot(b.position.x - a.position.x, b.position.y - a.position.y);
+  if (distance >= 1e-3) u.curvature = wrap_angle(b.orientation - a.orientation) / distance;
+  return u;
+}
+
+std::vector<std::uint32_t> measurable_road_users(const scenario& s) {
+  std::vector<std::uint32_t> ids;
+  for (const obstacle& o : s.obstacles) {
+    if (o.role == obstacle_role::dynamic_obstacle && !is_pedestrian(o) && !o.states.empty()) ids.push_back(o.id);
+  }
+  return ids;
+}
+
+std::optional<std::uint32_t> recorded_ego(const scenario& s, const planning_problem& problem) {
+  const auto measurable = [](const obstacle* o) {
+    return o != nullptr && o->role == obstacle_role::dynamic_obstacle && !is_pedestrian(*o) && !o->states.empty();
+  };
+  if (const obstacle* o = find_obstacle(s, problem.id); measurable(o)) return o->id;
+  if (problem.id > 90000) {
+    if (const obstacle* o = find_obstacle(s, problem.id - 90000); measurable(o)) return o->id;
+  }
+  const state& start = problem.initial;
+  for (const obstacle& o : s.obstacles) {
+    if (!measurable(&o)) continue;
+    const state* x = state_at(o, start.step);
+    if (x == nullptr) x = &o.states.front();
+    const double d = std::hypot(x->position.x - start.position.x, x->position.y - start.position.y);
+    if (d <= 0.5 && std::abs(wrap_angle(x->orientation - start.orientation)) <= 0.1 &&
+        std::abs(x->velocity - start.velocity) <= 0.5) {
+      return o.id;
+    }
+  }
+  return std::nullopt;
+}
+
+double room(const plan_result& result) { return std::max(result.mi_brake_selected, result.mi_accelerate_selected); }
+
+}  // namespace mm::commonroad
