@@ -12,6 +12,7 @@
 #include <ostream>
 #include <variant>
 
+#include "output_files.hpp"
 #include "mm/forecast.hpp"
 #include "mm/maneuver.hpp"
 #include "mm/sim/roundabout.hpp"
@@ -21,19 +22,14 @@ namespace mm::cli {
 namespace {
 
 using json = nlohmann::ordered_json;
-
-/// `value` rounded to `decimals` decimals, so that JSON shows e.g. 1.23 rather than 1.2300000000000002.
-double rounded(double value, int decimals = 6) {
-  const double scale = std::pow(10.0, decimals);
-  const double r = std::round(value * scale) / scale;
-  return r == 0.0 ? 0.0 : r;
-}
+using output::footprint_json;
+using output::point;
+using output::rounded;
+using output::write_text;
 
 json optional_number(const std::optional<double>& value, int decimals = 6) {
   return value && std::isfinite(*value) ? json(rounded(*value, decimals)) : json(nullptr);
 }
-
-json point(vec2 p) { return json::array({rounded(p.x, 4), rounded(p.y, 4)}); }
 
 /// The path as a polyline: every segment's start, arcs every ≤ 0.5 m, and the end.
 json sampled(const mm::sim::path& p) {
@@ -51,16 +47,6 @@ json sampled(const mm::sim::path& p) {
   }
   points.push_back(point(p.at(length).position));
   return points;
-}
-
-json footprint_json(const mm::footprint& shape) {
-  if (const auto* r = std::get_if<mm::rectangle>(&shape)) {
-    return {{"shape", "rectangle"}, {"length_m", rounded(r->length, 4)}, {"width_m", rounded(r->width, 4)}};
-  }
-  if (const auto* d = std::get_if<mm::disc>(&shape)) return {{"shape", "disc"}, {"radius_m", rounded(d->radius, 4)}};
-  json vertices = json::array();
-  for (vec2 v : std::get<mm::convex_polygon>(shape).vertices) vertices.push_back(point(v));
-  return {{"shape", "polygon"}, {"vertices_m", vertices}};
 }
 
 json scene_json(const scenario_file::loaded_scenario& loaded) {
@@ -178,13 +164,6 @@ class csv_file {
   std::ofstream out_;
   fmt::memory_buffer buffer_;
 };
-
-void write_text(const std::filesystem::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + file.string());
-}
 
 /// `fixed(value, decimals)` (decimals 0 to 17) appended to `out` without a string in between:
 /// std::to_chars, correctly rounded as fmt's "{:.6f}" is, so the same characters.

@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -13,8 +14,10 @@
 #include <thread>
 
 #include "mm/cli/commands.hpp"
+#include "mm/cli/measure.hpp"
 #include "mm/cli/plot.hpp"
 #include "mm/cli/sweep.hpp"
+#include "mm/commonroad/reader.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/sim/memory.hpp"
 
@@ -182,6 +185,54 @@ int snapshot_command(const scenario_options& o, double time, const std::string& 
   return exit_ok;
 }
 
+struct measure_command_options {
+  std::string file;
+  std::vector<std::string> agents;
+  std::string policy;
+  std::string out;
+  bool plots = false;
+};
+
+/// `--agent` values: road-user ids, or `all` alone.
+void parse_agents(const std::vector<std::string>& texts, mm::cli::measure_settings& settings) {
+  for (const std::string& text : texts) {
+    if (text == "all") {
+      settings.every_road_user = true;
+      continue;
+    }
+    std::uint32_t id = 0;
+    const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), id);
+    if (ec != std::errc() || end != text.data() + text.size() || id == 0) {
+      throw mm::cli::input_error("--agent " + text + ": expected the id of a road user of the file (a positive integer) or all");
+    }
+    settings.agents.push_back(id);
+  }
+  if (settings.every_road_user && !settings.agents.empty()) {
+    throw mm::cli::input_error("--agent all: measures every road user; give it alone, not with ids");
+  }
+}
+
+int measure_command(const measure_command_options& o) {
+  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
+  const std::string name = std::filesystem::path(o.file).stem().string();
+  mm::cli::measure_settings settings;
+  parse_agents(o.agents, settings);
+  if (!o.policy.empty()) {
+    const auto policy = sf::parse_policy(o.policy);
+    if (!policy) throw mm::cli::input_error("--policy " + o.policy + ": expected adj or const:SECONDS, e.g. const:1.0");
+    settings.policy = *policy;
+  }
+  settings.out_dir = o.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(o.out);
+  const mm::cli::measure_outcome outcome = mm::cli::measure_recording(recording, name, settings);
+  std::cout << fmt::format("{}: CommonRoad {}, {} road users and obstacles, time step {} s; policy {}\n", name,
+                           recording.version, recording.obstacles.size(), mm::cli::fixed(recording.time_step, 3),
+                           sf::policy_name(settings.policy));
+  std::cout << mm::cli::measurement_table(outcome);
+  std::cout << "written to " << settings.out_dir.string() << "/\n";
+  if (o.plots) plot_into(settings.out_dir);
+  return exit_ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -246,6 +297,20 @@ int main(int argc, char** argv) {
   snapshot->add_option("--tau", snapshot_tau, "Only this forecast time [s] (default: every one)")->type_name("SECONDS");
   snapshot->add_option("--out", snapshot_out, "CSV file to write (default: standard output)")->type_name("FILE.csv");
 
+  measure_command_options measure_options;
+  CLI::App* measure = app.add_subcommand(
+      "measure", "Measure the room to maneuver of road users recorded in a CommonRoad file: their Maneuverability Maps");
+  measure->add_option("FILE", measure_options.file, "CommonRoad scenario file (XML, version 2018b or 2020a)")
+      ->required()
+      ->type_name("FILE.xml");
+  measure->add_option("--agent", measure_options.agents,
+                      "Road user to measure, by obstacle id (repeatable), or all (default: the recorded ego of the planning problem)")
+      ->type_name("ID|all");
+  measure->add_option("--policy", measure_options.policy, "Forecast policy: adj (default) or const:SECONDS")
+      ->type_name("adj|const:SECONDS");
+  measure->add_option("--out", measure_options.out, "Output directory (default out/<file name without .xml>)")->type_name("DIR");
+  measure->add_flag("--plots", measure_options.plots, "Then draw the figures into the output directory (maneuvermap plot)");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -261,7 +326,14 @@ int main(int argc, char** argv) {
     if (sweep->parsed()) return sweep_command(sweep_opts);
     if (plot->parsed()) return plot_command(plot_target, plot_out);
     if (snapshot->parsed()) return snapshot_command(snapshot_options, snapshot_time, snapshot_agent, snapshot_tau, snapshot_out);
+    if (measure->parsed()) return measure_command(measure_options);
   } catch (const sf::scenario_error& e) {
+    std::cerr << "maneuvermap: " << e.what() << "\n";
+    return exit_bad_input;
+  } catch (const mm::commonroad::read_error& e) {
+    std::cerr << "maneuvermap: " << e.what() << "\n";
+    return exit_bad_input;
+  } catch (const mm::commonroad::measure_error& e) {
     std::cerr << "maneuvermap: " << e.what() << "\n";
     return exit_bad_input;
   } catch (const mm::cli::input_error& e) {

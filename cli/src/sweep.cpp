@@ -17,6 +17,7 @@
 #include <sstream>
 #include <thread>
 
+#include "output_files.hpp"
 #include "mm/cli/commands.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/scenario_file/loader.hpp"
@@ -38,6 +39,8 @@ const builtin_sweep* find_builtin_sweep(std::string_view name) {
 }
 
 namespace {
+
+using output::write_text;
 
 namespace sf = mm::scenario_file;
 
@@ -148,13 +151,6 @@ std::optional<std::string> read_whole_file(const std::filesystem::path& file) {
   text << in.rdbuf();
   if (in.bad()) return std::nullopt;
   return text.str();
-}
-
-void write_text(const std::filesystem::path& file, const std::string& text) {
-  std::ofstream out(file, std::ios::binary);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error("cannot write " + file.string());
 }
 
 std::string policy_slug(const std::string& policy) {

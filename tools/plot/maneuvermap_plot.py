@@ -254,6 +254,8 @@ class Run:
 
 def run_title(run):
     s = run.summary
+    if s.get("format") == "maneuvermap-measurement/1":
+        return f"{s['scenario']} (recorded, CommonRoad {s.get('commonroad_version', '')}) — policy {policy_label(run.policy)}"
     params = ", ".join(f"{k} = {v:g}" for k, v in s.get("parameters", {}).items() if k.endswith("_kmh"))
     text = f"{s['scenario']} — policy {policy_label(run.policy)}, seed {s['seed']}"
     return text + (f"\n{params}" if params else "")
@@ -409,6 +411,10 @@ def plot_topdown(run, out_dir, name, written):
     trajs = run.trajectories()
     fig, ax = plt.subplots(figsize=(8, 7.5))
     road_colour, lane_colour = "#d9d9d9", "#bdbdbd"
+    for lanelet in scene.get("lanelets", []):
+        outline = np.array(lanelet["left_m"] + lanelet["right_m"][::-1], dtype=float)
+        if len(outline) >= 3:
+            ax.add_patch(Polygon(outline, closed=True, fc=road_colour, ec=lane_colour, lw=0.4, zorder=0))
     for road in scene.get("roads", []):
         line = np.array(road["centre_line_m"])
         ax.plot(line[:, 0], line[:, 1], color=road_colour, lw=1, solid_capstyle="butt", zorder=0)
@@ -493,6 +499,8 @@ def plot_topdown(run, out_dir, name, written):
 def kind_label(scene, name):
     for a in scene["agents"]:
         if a["name"] == name:
+            if "type" in a:  # a recorded road user (maneuvermap measure)
+                return ("measured " if a["kind"] == "planning_vehicle" else "") + a["type"]
             return {"planning_vehicle": "planning", "scripted_vehicle": "scripted", "pedestrian": "pedestrian"}.get(
                 a["kind"], a["kind"])
     return ""

@@ -1,0 +1,46 @@
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "mm/commonroad/measure.hpp"
+#include "mm/commonroad/scenario.hpp"
+#include "mm/forecast_policy.hpp"
+
+namespace mm::cli {
+
+/// Options of `maneuvermap measure` once the CommonRoad file is read.
+struct measure_settings {
+  std::filesystem::path out_dir;  ///< created if missing; the five files are overwritten
+  /// The road users to measure; empty: the recorded ego of the first planning problem that has one.
+  std::vector<std::uint32_t> agents;
+  bool every_road_user = false;  ///< `--agent all`: every road user that can be measured
+  mm::forecast_policy policy;    ///< of every measured road user (spec §7)
+};
+
+/// What `maneuvermap measure` measured and wrote.
+struct measure_outcome {
+  std::vector<commonroad::measurement> measurements;  ///< one per road user, in the order measured
+  std::vector<std::string> files;                     ///< the files written, in order
+};
+
+/// The road users `settings` asks for (throws input_error when none is given and the file has no
+/// recorded ego, or when `every_road_user` finds none; `commonroad::measure_error` for an id that
+/// cannot be measured).
+std::vector<std::uint32_t> road_users_to_measure(const commonroad::scenario& s, const measure_settings& settings);
+
+/// Measures the road users of the recording `s` (named `name`, the file's stem) at every recorded
+/// step and writes trajectories.csv, map.csv, decisions.csv, summary.json and scene.json into
+/// `settings.out_dir`, in the formats of `maneuvermap run` (docs/outputs.md, docs/commonroad.md),
+/// so that `maneuvermap plot` draws them. The files are a function of the recording and the
+/// settings alone. Throws std::runtime_error when a file cannot be written.
+measure_outcome measure_recording(const commonroad::scenario& s, const std::string& name,
+                                  const measure_settings& settings);
+
+/// One line per measured road user: its steps, its least room (max(MI−, MI+) at τ̄) and when, the
+/// steps at which the planner would not have kept to what it did, and its earliest TTC.
+std::string measurement_table(const measure_outcome& outcome);
+
+}  // namespace mm::cli

@@ -1,0 +1,50 @@
+#pragma once
+// What the commands that write output files share (docs/outputs.md): JSON numbers rounded to a
+// few decimals, footprints as JSON, and whole-file writes that report failure.
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <stdexcept>
+#include <string>
+#include <variant>
+
+#include "mm/footprint.hpp"
+#include "mm/geometry.hpp"
+
+namespace mm::cli::output {
+
+using json = nlohmann::ordered_json;
+
+/// `value` rounded to `decimals` decimals, so that JSON shows e.g. 1.23 rather than 1.2300000000000002.
+inline double rounded(double value, int decimals = 6) {
+  const double scale = std::pow(10.0, decimals);
+  const double r = std::round(value * scale) / scale;
+  return r == 0.0 ? 0.0 : r;
+}
+
+/// A scene coordinate pair [m], to 4 decimals.
+inline json point(vec2 p) { return json::array({rounded(p.x, 4), rounded(p.y, 4)}); }
+
+/// {"shape": "rectangle", "length_m", "width_m"}, {"shape": "disc", "radius_m"} or
+/// {"shape": "polygon", "vertices_m"} (body frame).
+inline json footprint_json(const mm::footprint& shape) {
+  if (const auto* r = std::get_if<mm::rectangle>(&shape)) {
+    return {{"shape", "rectangle"}, {"length_m", rounded(r->length, 4)}, {"width_m", rounded(r->width, 4)}};
+  }
+  if (const auto* d = std::get_if<mm::disc>(&shape)) return {{"shape", "disc"}, {"radius_m", rounded(d->radius, 4)}};
+  json vertices = json::array();
+  for (vec2 v : std::get<mm::convex_polygon>(shape).vertices) vertices.push_back(point(v));
+  return {{"shape", "polygon"}, {"vertices_m", vertices}};
+}
+
+/// Writes `text` to `file`; throws std::runtime_error naming the file when that fails.
+inline void write_text(const std::filesystem::path& file, const std::string& text) {
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error("cannot write " + file.string());
+}
+
+}  // namespace mm::cli::output
