@@ -1,0 +1,33 @@
+// libFuzzer target for the CommonRoad reader: any input must either read or be rejected with a
+// read_error that says something; what it reads must give a planning input of its first road user
+// or be refused with a measure_error. Any other exception, a crash, a leak or a hang is a bug.
+// Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <string_view>
+
+#include "mm/commonroad/measure.hpp"
+#include "mm/commonroad/reader.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  try {
+    const mm::commonroad::scenario s = mm::commonroad::read_scenario_text(text, "fuzz.xml");
+    const std::vector<std::uint32_t> users = mm::commonroad::measurable_road_users(s);
+    if (users.empty()) return 0;
+    mm::commonroad::measure_options options;
+    options.agent = users.front();
+    const mm::commonroad::obstacle* agent = nullptr;
+    for (const mm::commonroad::obstacle& o : s.obstacles) {
+      if (o.id == options.agent) agent = &o;
+    }
+    const mm::plan_input in = mm::commonroad::planning_input(s, options, agent->states.back().step);
+    (void)mm::validation_error(in);
+  } catch (const mm::commonroad::read_error& e) {
+    if (std::string_view(e.what()).empty()) __builtin_trap();
+  } catch (const mm::commonroad::measure_error& e) {
+    if (std::string_view(e.what()).empty()) __builtin_trap();
+  }
+  return 0;
+}
