@@ -191,6 +191,7 @@ struct measure_command_options {
   std::string policy;
   std::string out;
   bool plots = false;
+  std::size_t jobs = 0;
 };
 
 /// `--agent` values: road-user ids, or `all` alone.
@@ -223,6 +224,7 @@ int measure_command(const measure_command_options& o) {
     settings.policy = *policy;
   }
   settings.out_dir = o.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(o.out);
+  settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
   const mm::cli::measure_outcome outcome = mm::cli::measure_recording(recording, name, settings);
   std::cout << fmt::format("{}: CommonRoad {}, {} road users and obstacles, time step {} s; policy {}\n", name,
                            recording.version, recording.obstacles.size(), mm::cli::fixed(recording.time_step, 3),
@@ -309,6 +311,10 @@ int main(int argc, char** argv) {
   measure->add_option("--policy", measure_options.policy, "Forecast policy: adj (default) or const:SECONDS")
       ->type_name("adj|const:SECONDS");
   measure->add_option("--out", measure_options.out, "Output directory (default out/<file name without .xml>)")->type_name("DIR");
+  measure->add_option("--jobs,-j", measure_options.jobs,
+                      "Road users measured at a time (outputs do not depend on it; default: the number of cores)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
+      ->type_name("N");
   measure->add_flag("--plots", measure_options.plots, "Then draw the figures into the output directory (maneuvermap plot)");
 
   try {

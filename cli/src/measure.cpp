@@ -3,6 +3,9 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <atomic>
+#include <exception>
+#include <thread>
 #include <cmath>
 #include <limits>
 #include <nlohmann/json.hpp>
@@ -207,11 +210,30 @@ std::vector<std::uint32_t> road_users_to_measure(const cr::scenario& s, const me
 measure_outcome measure_recording(const cr::scenario& s, const std::string& name, const measure_settings& settings) {
   const std::vector<std::uint32_t> agents = road_users_to_measure(s, settings);
   measure_outcome outcome;
-  cr::measure_options options;
-  options.config.policy = settings.policy;
-  for (std::uint32_t agent : agents) {
-    options.agent = agent;
-    outcome.measurements.push_back(cr::measure(s, options));
+  outcome.measurements.resize(agents.size());
+  // Road users are independent: `jobs` threads take them in turn, each result in its place. The
+  // first error (in road-user order) is rethrown once all threads are done.
+  std::vector<std::exception_ptr> errors(agents.size());
+  std::atomic<std::size_t> next{0};
+  const auto work = [&] {
+    cr::measure_options options;
+    options.config.policy = settings.policy;
+    for (std::size_t i = next++; i < agents.size(); i = next++) {
+      options.agent = agents[i];
+      try {
+        outcome.measurements[i] = cr::measure(s, options);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  {
+    std::vector<std::jthread> threads;
+    for (std::size_t j = 1; j < std::min(settings.jobs, agents.size()); ++j) threads.emplace_back(work);
+    work();
+  }
+  for (const std::exception_ptr& e : errors) {
+    if (e) std::rethrow_exception(e);
   }
 
   // map.csv and decisions.csv by time, then road user, as `maneuvermap run` writes them.

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -18,6 +19,7 @@ struct measure_settings {
   std::vector<std::uint32_t> agents;
   bool every_road_user = false;  ///< `--agent all`: every road user that can be measured
   mm::forecast_policy policy;    ///< of every measured road user (spec §7)
+  std::size_t jobs = 1;          ///< road users measured at a time (the files do not depend on it)
 };
 
 /// What `maneuvermap measure` measured and wrote.
