@@ -4,11 +4,14 @@
 
 #include <algorithm>
 #include <atomic>
-#include <exception>
-#include <thread>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <numbers>
+#include <thread>
+#include <utility>
+#include <vector>
 
 #include "output_files.hpp"
 #include "mm/cli/commands.hpp"

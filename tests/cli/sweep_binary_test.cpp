@@ -146,6 +146,15 @@ TEST(maneuvermap_plot, run_with_plots_draws_the_map_speed_and_top_down_view) {
   expect_png(dir / "figures/map.png");
 }
 
+TEST(maneuvermap_plot, measure_with_plots_draws_the_map_of_each_measured_road_user_and_the_scene_with_its_lanes) {
+  REQUIRE_MATPLOTLIB();
+  const temp_dir dir("plot_measure");
+  const std::string recording = std::string(MM_TESTS_CLI_DIR) + "/../../data/commonroad/ZAM_Tutorial-1_2_T-1.xml";
+  const result r = run("measure " + recording + " --agent all --plots --out " + (dir / "measured").string(), "measure");
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (const char* name : {"map-42", "map-44", "speed", "topdown"}) expect_png(dir / "measured" / (std::string(name) + ".png"));
+}
+
 TEST(maneuvermap_plot, sweep_with_plots_draws_the_sweep_and_its_kept_runs) {
   REQUIRE_MATPLOTLIB();
   const temp_dir dir("plot_sweep");
