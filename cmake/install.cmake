@@ -1,9 +1,9 @@
 # Installs the planner library and the simulator as a CMake package:
-#   find_package(maneuvermap REQUIRED)  →  targets mm::core and mm::sim
+#   find_package(maneuvermap REQUIRED)  →  targets mm::core, mm::sim and mm::commonroad
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS mm_core mm_sim EXPORT maneuvermap_targets
+install(TARGETS mm_core mm_sim mm_commonroad EXPORT maneuvermap_targets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   FILE_SET HEADERS DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 install(EXPORT maneuvermap_targets NAMESPACE mm:: FILE maneuvermap-targets.cmake
