@@ -101,7 +101,16 @@ plan_input planning_input(const scenario& s, const measure_options& options, std
       track.history.push_back(x);
     } else {
       const state* last = state_at(o, step);
-      if (last == nullptr || last == &o.states.front()) continue;  // not there, or seen once only
+      if (last == nullptr) continue;
+      if (last == &o.states.front()) {
+        // Seen once: the recorded speed and yaw rate (0 when the file gives none), as no estimate can be made.
+        const observation x = observed(s, *last);
+        track.history.push_back(x);
+        track.motion = motion_estimate{x.pose, x.speed, last->yaw_rate.value_or(0.0)};
+        in.obstacles.push_back(std::move(track));
+        if (ids != nullptr) ids->push_back(o.id);
+        continue;
+      }
       const auto end = static_cast<std::ptrdiff_t>(last - o.states.data()) + 1;
       std::ptrdiff_t begin = end - 2;
       while (begin > 0 && in.time - step_time(s, o.states[static_cast<std::size_t>(begin - 1)].step) <= window + 1e-9) {

@@ -135,7 +135,8 @@ std::optional<std::string> validation_error(const plan_input& in) {
     const obstacle_track& o = in.obstacles[j];
     const auto field = [&] { return "obstacles[" + std::to_string(j) + "] (id " + std::to_string(o.id) + ")"; };
     c.shape([&] { return field() + ".shape"; }, o.shape);
-    const std::size_t needed = o.kind == obstacle_kind::static_obstacle ? 1 : 2;
+    // Speed and yaw rate are estimated from two observations or more, unless the caller gives them.
+    const std::size_t needed = o.kind == obstacle_kind::static_obstacle || o.motion ? 1 : 2;
     c.require(o.history.size() >= needed, [&] { return field() + ".history size"; }, static_cast<double>(o.history.size()),
               needed == 1 ? "at least 1 observation"
                           : "at least 2 observations (speed and yaw rate are estimated from the history)");

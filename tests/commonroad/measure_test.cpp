@@ -72,14 +72,28 @@ std::vector<std::uint32_t> ids_at(const scenario& s, std::int64_t step) {
   return ids;
 }
 
-TEST(measure, the_input_holds_the_recorded_ego_and_every_obstacle_present_with_two_states_up_to_then) {
+TEST(measure, the_input_holds_the_recorded_ego_and_every_obstacle_present_then) {
   const scenario s = crossing();
-  // Step 0: the road users have one state each (the planner needs two), car 4 has not appeared.
-  EXPECT_EQ(ids_at(s, 0), (std::vector<std::uint32_t>{6}));
-  EXPECT_EQ(ids_at(s, 1), (std::vector<std::uint32_t>{2, 3, 5, 6}));
-  EXPECT_EQ(ids_at(s, 5), (std::vector<std::uint32_t>{2, 3, 5, 6}));
-  EXPECT_EQ(ids_at(s, 6), (std::vector<std::uint32_t>{2, 3, 4, 5, 6}));
+  // Car 4 appears at step 5, truck 5 leaves after step 10.
+  EXPECT_EQ(ids_at(s, 0), (std::vector<std::uint32_t>{2, 3, 5, 6}));
+  EXPECT_EQ(ids_at(s, 4), (std::vector<std::uint32_t>{2, 3, 5, 6}));
+  EXPECT_EQ(ids_at(s, 5), (std::vector<std::uint32_t>{2, 3, 4, 5, 6}));
+  EXPECT_EQ(ids_at(s, 10), (std::vector<std::uint32_t>{2, 3, 4, 5, 6}));
   EXPECT_EQ(ids_at(s, 11), (std::vector<std::uint32_t>{2, 3, 4, 6}));
+
+  // At its first state a road user comes with its recorded motion, as nothing can be estimated yet.
+  scenario turning = crossing();
+  turning.obstacles[3].states.front().yaw_rate = 0.2;
+  const mm::plan_input first = planning_input(turning, of(1), 5);
+  const mm::obstacle_track& appearing = first.obstacles[2];
+  ASSERT_EQ(appearing.id, 4U);
+  ASSERT_EQ(appearing.history.size(), 1U);
+  ASSERT_TRUE(appearing.motion.has_value());
+  EXPECT_EQ(appearing.motion->speed, 10.0);
+  EXPECT_EQ(appearing.motion->yaw_rate, 0.2);
+  EXPECT_EQ(appearing.motion->pose.position, (mm::vec2{-80, 3.5}));
+  EXPECT_FALSE(mm::validation_error(first).has_value());
+  EXPECT_FALSE(planning_input(turning, of(1), 6).obstacles[2].motion.has_value());  // estimated from two
 
   std::vector<std::uint32_t> ids;
   const mm::plan_input in = planning_input(s, of(1), 10, &ids);
@@ -91,6 +105,7 @@ TEST(measure, the_input_holds_the_recorded_ego_and_every_obstacle_present_with_t
   // Car 2: the observations within the half-second history window, the last at the planning time.
   const mm::obstacle_track& car = in.obstacles[0];
   ASSERT_EQ(car.history.size(), 6U);
+  EXPECT_FALSE(car.motion.has_value());
   EXPECT_DOUBLE_EQ(car.history.front().time, 0.5);
   EXPECT_DOUBLE_EQ(car.history.back().time, 1.0);
   EXPECT_EQ(car.kind, mm::obstacle_kind::vehicle);

@@ -80,6 +80,17 @@ TEST(validation, an_empty_forecast_grid_or_one_beyond_the_collision_window_is_re
       "config.policy.constant_forecast_time", "on the grid");
 }
 
+TEST(validation, one_observation_is_enough_when_the_caller_gives_the_motion) {
+  plan_input in = valid_input();
+  in.obstacles[0].history.erase(in.obstacles[0].history.begin(), in.obstacles[0].history.end() - 1);
+  EXPECT_TRUE(validation_error(in).has_value());
+  const observation& last = in.obstacles[0].history.back();
+  in.obstacles[0].motion = motion_estimate{last.pose, last.speed, 0.1};
+  EXPECT_EQ(validation_error(in), std::nullopt);
+  in.obstacles[0].history.clear();
+  EXPECT_TRUE(validation_error(in).has_value());
+}
+
 TEST(validation, a_history_too_short_or_out_of_order_is_rejected) {
   expect_rejected([](plan_input& in) { in.obstacles[0].history.resize(1); }, "obstacles[0] (id 5).history size",
                   "at least 2 observations");

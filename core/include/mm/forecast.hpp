@@ -32,7 +32,7 @@ struct motion_estimate {
 };
 
 /// An observed obstacle: its footprint and its observation history, oldest first, strictly
-/// increasing times. Vehicles and pedestrians need at least two observations.
+/// increasing times. Vehicles and pedestrians need at least two observations, or one and `motion`.
 struct obstacle_track {
   std::uint32_t id = 0;
   obstacle_kind kind = obstacle_kind::vehicle;

@@ -46,9 +46,10 @@ struct measurement {
 
 /// The planning input of road user `options.agent` at its recorded step `step`: the ego as recorded
 /// (above), and every other obstacle present at that step — static obstacles with their one state,
-/// road users with at least two recorded states up to it, their observations within the history
-/// window (spec §4), the last at t_k; `ids` receives their ids in input order. Road users are seen
-/// from their second recorded state, as the planner needs two to estimate their speed and yaw rate.
+/// road users with their recorded states up to it within the history window (spec §4), the last at
+/// t_k, from which the planner estimates their speed and yaw rate; a road user at its first
+/// recorded state, from which nothing can be estimated, with its recorded speed and yaw rate as its
+/// motion (yaw rate 0 when the file gives none). `ids` receives their ids in input order.
 /// Throws `measure_error` when the agent cannot be measured or is not recorded at `step`.
 plan_input planning_input(const scenario& s, const measure_options& options, std::int64_t step,
                           std::vector<std::uint32_t>* ids = nullptr);
