@@ -254,6 +254,7 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
   std::stable_sort(keys.begin(), keys.end(), [](const row_key& a, const row_key& b) { return a.time < b.time; });
   std::string map = "t,agent,tau,mi_brake,mi_accel,excluded\n";
   std::string decisions = "t,agent,tau_bar,family,mode,ttc,cpu_us\n";
+  std::string rooms = "t,agent,speed,room,mode,ttc\n";
   for (const row_key& key : keys) {
     const cr::measured_step& step = outcome.measurements[key.measurement].steps[key.step];
     const plan_result& r = step.result;
@@ -269,6 +270,10 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
     append_number(decisions, r.forecast_time, ',');
     decisions += std::string(mm::to_string(r.selected_family)) + ',' + std::string(mm::to_string(r.mode)) + ',';
     decisions += fixed(r.time_to_collision) + ",\n";
+    rooms += prefix;
+    append_number(rooms, step.ego.speed, ',');
+    append_number(rooms, cr::room(r), ',');
+    rooms += std::string(mm::to_string(r.mode)) + ',' + fixed(r.time_to_collision) + '\n';
   }
 
   std::filesystem::create_directories(settings.out_dir);
@@ -281,6 +286,7 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
   write("decisions.csv", decisions);
   write("summary.json", summary_json(s, name, settings, outcome).dump(2) + "\n");
   write("scene.json", scene_json(s, name, agents).dump() + "\n");
+  write("rooms.csv", rooms);
   return outcome;
 }
 

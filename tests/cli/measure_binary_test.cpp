@@ -30,7 +30,7 @@ TEST(maneuvermap_measure, measures_the_recorded_ego_of_the_planning_problem_at_e
   ASSERT_EQ(r.code, 0) << r.err;
   // Car 34 replays the planning problem's ego (the same id); it drives into the pedestrian.
   EXPECT_TRUE(contains(r.out, "        34     93")) << r.out;
-  for (const char* file : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+  for (const char* file : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json", "rooms.csv"}) {
     EXPECT_TRUE(std::filesystem::is_regular_file(dir / "run" / file)) << file;
   }
   std::string header;
@@ -42,6 +42,13 @@ TEST(maneuvermap_measure, measures_the_recorded_ego_of_the_planning_problem_at_e
   bool near_crash = false;
   for (const auto& row : decisions) near_crash = near_crash || row[4] == "near_crash";
   EXPECT_TRUE(near_crash) << "the recording ends in a collision with the pedestrian";
+  // rooms.csv: a row per step, the room 1 before the pedestrian comes near and 0 at the collision.
+  const auto rooms = csv_rows(dir / "run/rooms.csv", &header);
+  EXPECT_EQ(header, "t,agent,speed,room,mode,ttc");
+  ASSERT_EQ(rooms.size(), 93U);
+  EXPECT_EQ(rooms.front()[3], "1.000000");
+  EXPECT_EQ(rooms[56][0], "5.600000");
+  EXPECT_EQ(rooms[56][3], "0.000000");
   EXPECT_TRUE(contains(read_file(dir / "run/summary.json"), "\"format\": \"maneuvermap-measurement/1\""));
   const std::string scene = read_file(dir / "run/scene.json");
   EXPECT_TRUE(contains(scene, "\"lanelets\":[{")) << scene.substr(0, 200);
@@ -53,7 +60,7 @@ TEST(maneuvermap_measure, gives_byte_identical_files_on_every_run_on_any_number_
   // Once on one thread, once on two: the files do not depend on it.
   ASSERT_EQ(measure(recording("USA_Lanker-1_1_T-1") + " --agent 1213 --agent 1214 --jobs 1 --out " + (dir / "a").string(), dir).code, 0);
   ASSERT_EQ(measure(recording("USA_Lanker-1_1_T-1") + " --agent 1213 --agent 1214 --jobs 2 --out " + (dir / "b").string(), dir).code, 0);
-  for (const char* file : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+  for (const char* file : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json", "rooms.csv"}) {
     EXPECT_EQ(read_file(dir / "a" / file), read_file(dir / "b" / file)) << file;
   }
   EXPECT_EQ(csv_rows(dir / "a/decisions.csv").size(), 2U * 41U);

@@ -152,7 +152,7 @@ TEST(maneuvermap_plot, measure_with_plots_draws_the_map_of_each_measured_road_us
   const std::string recording = std::string(MM_TESTS_CLI_DIR) + "/../../data/commonroad/ZAM_Tutorial-1_2_T-1.xml";
   const result r = run("measure " + recording + " --agent all --plots --out " + (dir / "measured").string(), "measure");
   ASSERT_EQ(r.code, 0) << r.err;
-  for (const char* name : {"map-42", "map-44", "speed", "topdown"}) expect_png(dir / "measured" / (std::string(name) + ".png"));
+  for (const char* name : {"map-42", "map-44", "speed", "topdown", "rooms"}) expect_png(dir / "measured" / (std::string(name) + ".png"));
 }
 
 TEST(maneuvermap_plot, sweep_with_plots_draws_the_sweep_and_its_kept_runs) {

@@ -531,6 +531,38 @@ def plot_run(directory, out_dir, written):
         plot_speed([run], lambda r: agents[0], out_dir, "speed",
                    f"Speed of {agents[0]}: {run_title(run)}", written)
     plot_topdown(run, out_dir, "topdown", written)
+    rooms = os.path.join(directory, "rooms.csv")
+    if os.path.isfile(rooms):
+        plot_rooms(run, read_csv(rooms), out_dir, "rooms", written)
+
+
+def plot_rooms(run, rows, out_dir, name, written):
+    """The room to maneuver of every measured road user over time (maneuvermap measure)."""
+    by_agent = {}
+    for r in rows:
+        by_agent.setdefault(r["agent"], []).append((float(r["t"]), float(r["room"]), r["mode"] != "nominal"))
+    fig, ax = plt.subplots(figsize=(9, 4.8))
+    least = min(by_agent.items(), key=lambda item: min(room for _, room, _ in item[1]))[0] if by_agent else None
+    for i, (agent, points) in enumerate(by_agent.items()):
+        t, room, unsafe = (np.array(v) for v in zip(*points))
+        colour = AGENT_COLOURS[i % len(AGENT_COLOURS)]
+        emphasis = agent == least or len(by_agent) <= len(AGENT_COLOURS)
+        ax.plot(t, room, color=colour if emphasis else "#9e9e9e", lw=1.8 if emphasis else 0.8,
+                alpha=1.0 if emphasis else 0.6, label=agent if emphasis else None, zorder=3 if emphasis else 2)
+        ax.plot(t[unsafe], room[unsafe], ls="none", marker="x", ms=4, color=colour if emphasis else "#9e9e9e",
+                zorder=4)
+    ax.set_ylim(-0.03, 1.03)
+    ax.set_xlabel("time t [s]")
+    ax.set_ylabel("room max(MI⁻, MI⁺) at τ̄")
+    title = f"Room to maneuver of {len(by_agent)} recorded road user{'s' if len(by_agent) != 1 else ''}: {run_title(run)}"
+    if len(by_agent) > len(AGENT_COLOURS):
+        title += f"\nthe one with the least room coloured ({least}), the others grey"
+    ax.set_title(title, fontsize=10)
+    handles, labels = ax.get_legend_handles_labels()
+    handles.append(Line2D([], [], ls="none", marker="x", ms=5, color="#555555"))
+    labels.append("what it did was not safe (mode not nominal)")
+    ax.legend(handles, labels, loc="lower left", fontsize=8, ncol=2)
+    save(fig, out_dir, name, written)
 
 
 # --- a sweep ----------------------------------------------------------------------------------

@@ -36,7 +36,7 @@ std::vector<std::uint32_t> road_users_to_measure(const commonroad::scenario& s, 
 /// Measures the road users of the recording `s` (named `name`, the file's stem) at every recorded
 /// step and writes trajectories.csv, map.csv, decisions.csv, summary.json and scene.json into
 /// `settings.out_dir`, in the formats of `maneuvermap run` (docs/outputs.md, docs/commonroad.md),
-/// so that `maneuvermap plot` draws them. The files are a function of the recording and the
+/// so that `maneuvermap plot` draws them, and rooms.csv: each step's room (`commonroad::room`). The files are a function of the recording and the
 /// settings alone. Throws std::runtime_error when a file cannot be written.
 measure_outcome measure_recording(const commonroad::scenario& s, const std::string& name,
                                   const measure_settings& settings);
