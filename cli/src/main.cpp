@@ -206,6 +206,9 @@ void parse_agents(const std::vector<std::string>& texts, mm::cli::measure_settin
     if (ec != std::errc() || end != text.data() + text.size() || id == 0) {
       throw mm::cli::input_error("--agent " + text + ": expected the id of a road user of the file (a positive integer) or all");
     }
+    if (std::find(settings.agents.begin(), settings.agents.end(), id) != settings.agents.end()) {
+      throw mm::cli::input_error("--agent " + text + ": given twice; each road user is measured once");
+    }
     settings.agents.push_back(id);
   }
   if (settings.every_road_user && !settings.agents.empty()) {

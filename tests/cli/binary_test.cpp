@@ -24,11 +24,11 @@ result run(const std::string& args, const std::string& tag) {
 TEST(maneuvermap, help_lists_the_commands_and_exits_0) {
   const result r = run("--help", "help");
   EXPECT_EQ(r.code, 0);
-  for (const char* command : {"list", "validate", "run", "snapshot"}) EXPECT_TRUE(contains(r.out, command)) << r.out;
+  for (const char* command : {"list", "validate", "run", "snapshot", "measure"}) EXPECT_TRUE(contains(r.out, command)) << r.out;
 }
 
 TEST(maneuvermap, every_command_has_help) {
-  for (const char* command : {"list", "validate", "run", "snapshot"}) {
+  for (const char* command : {"list", "validate", "run", "snapshot", "measure"}) {
     const result r = run(std::string(command) + " --help", std::string("help_") + command);
     EXPECT_EQ(r.code, 0) << command;
     EXPECT_TRUE(contains(r.out, command)) << r.out;

@@ -100,7 +100,7 @@ TEST(maneuvermap_measure, bad_input_exits_2_with_a_message_that_says_what_was_wr
   EXPECT_EQ(pedestrian.code, 2);
   EXPECT_TRUE(contains(pedestrian.err, "a pedestrian")) << pedestrian.err;
 
-  for (const char* option : {"--agent abc", "--agent 0", "--agent all --agent 42", "--policy const:0.3"}) {
+  for (const char* option : {"--agent abc", "--agent 0", "--agent all --agent 42", "--agent 42 --agent 42", "--policy const:0.3", "--jobs 0"}) {
     const result r = measure(recording("ZAM_Tutorial-1_2_T-1") + " " + option + " --out " + (dir / "run").string(), dir);
     EXPECT_EQ(r.code, 2) << option << ": " << r.err;
     EXPECT_TRUE(contains(r.err, "maneuvermap: ")) << option << ": " << r.err;
