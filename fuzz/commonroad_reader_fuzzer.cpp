@@ -1,6 +1,8 @@
 // libFuzzer target for the CommonRoad reader: any input must either read or be rejected with a
 // read_error that says something; what it reads must give a planning input of its first road user
-// or be refused with a measure_error. Any other exception, a crash, a leak or a hang is a bug.
+// at its last state, or be refused with a measure_error, and the planner must plan on that input
+// (indices in [0, 1]) or refuse it with a status. Any other exception, a crash, a leak or a hang
+// is a bug.
 // Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
 #include <cstddef>
 #include <cstdint>
@@ -23,7 +25,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if (o.id == options.agent) agent = &o;
     }
     const mm::plan_input in = mm::commonroad::planning_input(s, options, agent->states.back().step);
-    (void)mm::validation_error(in);
+    const mm::plan_result r = mm::plan(in);
+    if (r.ok() && !(r.mi_brake_selected >= 0.0 && r.mi_brake_selected <= 1.0)) __builtin_trap();
   } catch (const mm::commonroad::read_error& e) {
     if (std::string_view(e.what()).empty()) __builtin_trap();
   } catch (const mm::commonroad::measure_error& e) {
