@@ -369,7 +369,9 @@ class reader {
       fail(set, sub(path, "occupancySet"), "set-based occupancies are not supported", "a <trajectory> of exact states");
     }
     const pugi::xml_node trajectory = n.child("trajectory");
-    if (trajectory && !dynamic) fail(trajectory, sub(path, "trajectory"), "a trajectory", "none in a static obstacle");
+    if (trajectory.child("state") && !dynamic) {
+      fail(trajectory, sub(path, "trajectory"), "a trajectory of states", "none in a static obstacle (an empty one is skipped)");
+    }
     std::size_t index = 0;
     for (pugi::xml_node s = trajectory.child("state"); s; s = s.next_sibling("state")) {
       const std::string state_path = sub(path, "trajectory / state " + std::to_string(++index));

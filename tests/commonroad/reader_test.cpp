@@ -348,10 +348,11 @@ TEST(commonroad_reader, finds_state_children_in_any_order_and_skips_unknown_ones
   EXPECT_EQ(s.planning_problems[0].initial.position, (mm::vec2{1.0, 2.0}));
 }
 
-TEST(commonroad_reader, reads_a_2018b_static_obstacle_without_velocity_and_a_missing_benchmark_id) {
+TEST(commonroad_reader, reads_a_2018b_static_obstacle_without_velocity_or_trajectory_states_and_a_missing_benchmark_id) {
   const std::string text = document(R"(<obstacle id="3"><role>static</role><type>parkedVehicle</type>
 <shape><rectangle><length>4</length><width>2</width></rectangle></shape>
 <initialState><position><point><x>1</x><y>2</y></point></position><orientation><exact>0.3</exact></orientation><time><exact>0</exact></time></initialState>
+<trajectory/>
 </obstacle>
 <obstacle id="4"><role>dynamic</role><type>car</type><shape>)" + car_rectangle + R"(</shape>
 <initialState>)" + state_children(5, 5, 0) + R"(</initialState></obstacle>
