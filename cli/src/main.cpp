@@ -228,6 +228,7 @@ int measure_command(const measure_command_options& o) {
   }
   settings.out_dir = o.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(o.out);
   settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
+  settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
   const mm::cli::measure_outcome outcome = mm::cli::measure_recording(recording, name, settings);
   std::cout << fmt::format("{}: CommonRoad {}, {} road users and obstacles, time step {} s; policy {}\n", name,
                            recording.version, recording.obstacles.size(), mm::cli::fixed(recording.time_step, 3),

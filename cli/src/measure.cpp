@@ -7,6 +7,8 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <mutex>
+#include <ostream>
 #include <nlohmann/json.hpp>
 #include <numbers>
 #include <thread>
@@ -218,6 +220,8 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
   // first error (in road-user order) is rethrown once all threads are done.
   std::vector<std::exception_ptr> errors(agents.size());
   std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  std::size_t done = 0;
   const auto work = [&] {
     cr::measure_options options;
     options.config.policy = settings.policy;
@@ -228,6 +232,10 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
       } catch (...) {
         errors[i] = std::current_exception();
       }
+      if (settings.progress != nullptr) {
+        const std::lock_guard lock(progress_mutex);
+        *settings.progress << fmt::format("\r{}: {} / {} road users measured", name, ++done, agents.size()) << std::flush;
+      }
     }
   };
   {
@@ -235,6 +243,7 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
     for (std::size_t j = 1; j < std::min(settings.jobs, agents.size()); ++j) threads.emplace_back(work);
     work();
   }
+  if (settings.progress != nullptr) *settings.progress << "\r\033[K" << std::flush;
   for (const std::exception_ptr& e : errors) {
     if (e) std::rethrow_exception(e);
   }

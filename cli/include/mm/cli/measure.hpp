@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
+#include <iosfwd>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@ struct measure_settings {
   bool every_road_user = false;  ///< `--agent all`: every road user that can be measured
   mm::forecast_policy policy;    ///< of every measured road user (spec §7)
   std::size_t jobs = 1;          ///< road users measured at a time (the files do not depend on it)
+  std::ostream* progress = nullptr;  ///< where to show how many road users are done (a terminal), or null
 };
 
 /// What `maneuvermap measure` measured and wrote.
