@@ -138,8 +138,8 @@ measurement measure(const scenario& s, const measure_options& options) {
     step.recorded = in.nominal;
     step.result = p.plan(in);
     if (!step.result.ok()) {
-      throw measure_error("road user " + std::to_string(agent.id) + " at step " + std::to_string(x.step) + " (t = " +
-                          std::to_string(step.time) + " s): the planner refused its input: " + step.result.error);
+      throw measure_error("road user " + std::to_string(agent.id) + " at step " + std::to_string(x.step) +
+                          ": the planner refused its input: " + step.result.error);
     }
     m.steps.push_back(std::move(step));
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <initializer_list>
@@ -10,6 +11,7 @@
 #include <map>
 #include <optional>
 #include <span>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -32,6 +34,13 @@ bool can_interact(const ego_state& ego, const forecast_obstacle& obstacle, const
   const double reach = ego_travel + obstacle_travel + bounding_radius(ego.shape) +
                        bounding_radius(obstacle.shape) + config.safety_margin;
   return squared_norm(obstacle.motion.pose.position - ego.pose.position) < reach * reach;
+}
+
+/// `value` to 3 significant digits, for messages ("2.25e-28", "0.0001").
+std::string three_digits(double value) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 3).ptr;
+  return std::string(buffer, end);
 }
 
 plan_result invalid(std::string error) {
@@ -476,8 +485,23 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
 
   collision_window window{config.displacement_horizon, config.collision_window, options.max_time_step,
                           config.safety_margin};
-  for (const forecast_obstacle& o : relevant) {
-    window.time_step = std::min(window.time_step, tunneling_time_step(ego, o, window));
+  for (std::size_t k = 0; k < n; ++k) {
+    const double step = tunneling_time_step(ego, relevant[k], window);
+    if (step < smallest_collision_time_step) {
+      // Micrometre footprints or speeds far beyond any road user's: refused, rather than sampled
+      // at millions of times (or more than a count holds).
+      const std::size_t j = relevant_track[k];
+      return invalid("obstacles[" + std::to_string(j) + "] (id " + std::to_string(in.obstacles[j].id) +
+                     "): the collision time step the tunneling bound of spec §5 needs with it is " +
+                     three_digits(step) + " s; expected at least " + three_digits(smallest_collision_time_step) +
+                     " s: footprints of road users (not of micrometres) and speeds of road users (the ego's top "
+                     "speed and the obstacle's estimated speed add up to " +
+                     three_digits(speed_after(ego.speed, ego.limits.max_acceleration, window.horizon,
+                                              ego.limits.speed_cap) +
+                                  relevant[k].motion.speed) +
+                     " m/s)");
+    }
+    window.time_step = std::min(window.time_step, step);
   }
   window.time_step = std::min(window.time_step, config.collision_window);
   result.collision_time_step = window.time_step;

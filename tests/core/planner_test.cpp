@@ -329,6 +329,30 @@ TEST(planner, a_pedestrian_crossing_ahead_makes_the_ego_yield) {
                                  {1.0, 3.0, 0.001, 0.0}));
 }
 
+TEST(planner, an_input_that_needs_a_time_step_below_the_floor_is_refused_and_one_just_above_is_planned) {
+  // A footprint of micrometres: the tunneling bound is far below 0.1 ms.
+  plan_input tiny = crossing_scene();
+  tiny.obstacles[0].shape = disc{1e-6};
+  const plan_result refused = plan(tiny);
+  EXPECT_EQ(refused.status, plan_status::invalid_input);
+  EXPECT_NE(refused.error.find("obstacles[0] (id 1): the collision time step the tunneling bound of spec §5"),
+            std::string::npos)
+      << refused.error;
+  EXPECT_EQ(plan_reference(tiny).status, plan_status::invalid_input);
+  // A speed no road user has (the fuzzer's recorded 4.4e27 m/s made the sample count overflow).
+  plan_input fast = crossing_scene();
+  fast.ego.limits.speed_cap = 4.4e27;
+  fast.ego.speed = 4.4e27;
+  EXPECT_EQ(plan(fast).status, plan_status::invalid_input);
+  // A disc whose tunneling bound is just above the floor is planned on.
+  const double speeds = 40.0 / 3.6 + 3.0 * 1.0 + 10.0;  // the ego's top speed within T_h, and the car's
+  plan_input small = crossing_scene();
+  small.obstacles[0].shape = disc{1.01 * smallest_collision_time_step * speeds / 2.0};
+  const plan_result planned = plan(small);
+  ASSERT_TRUE(planned.ok()) << planned.error;
+  EXPECT_GE(planned.collision_time_step, smallest_collision_time_step);
+}
+
 TEST(planner, a_command_outside_the_limits_is_clamped) {
   plan_input in = ego_only(10.0);
   in.nominal = {12.0, 0.5};
