@@ -279,7 +279,7 @@ class mapper {
           mm::sim::pedestrian out;
           out.name = name;
           out.motion = read_motion(v);
-          out.radius = v.quantity_or("radius", {metres}, out.radius, range::positive);
+          out.radius = v.quantity_or("radius", {metres}, out.radius, range::size);
           entry.index = s.pedestrians.size();
           s.pedestrians.push_back(std::move(out));
           break;
@@ -299,8 +299,8 @@ class mapper {
     const map_view f = v.child("footprint");
     f.allow({"length_m", "width_m"});
     mm::rectangle r;
-    r.length = f.quantity_or("length", {metres}, r.length, range::positive);
-    r.width = f.quantity_or("width", {metres}, r.width, range::positive);
+    r.length = f.quantity_or("length", {metres}, r.length, range::size);
+    r.width = f.quantity_or("width", {metres}, r.width, range::size);
     return r;
   }
 

@@ -112,6 +112,7 @@ void fail_value(const context& ctx, const field& f, const std::string& what) {
 double read_number(const context& ctx, const field& f, std::string_view label, range r) {
   const std::string expected = std::string(r == range::positive       ? "a positive number"
                                            : r == range::non_negative ? "a number ≥ 0"
+                                           : r == range::size         ? "a size of at least 0.01"
                                                                       : "a number") +
                                unit_text(label);
   if (!f.node.IsScalar()) fail_value(ctx, f, expected);
@@ -142,7 +143,8 @@ double read_number(const context& ctx, const field& f, std::string_view label, r
     value = *parsed;
   }
   if (!std::isfinite(value)) fail_value(ctx, f, "a finite number" + unit_text(label));
-  if ((r == range::non_negative && !(value >= 0.0)) || (r == range::positive && !(value > 0.0))) {
+  if ((r == range::non_negative && !(value >= 0.0)) || (r == range::positive && !(value > 0.0)) ||
+      (r == range::size && !(value >= smallest_size))) {
     fail_value(ctx, f, expected);
   }
   return value;

@@ -34,7 +34,10 @@ inline constexpr unit degrees{"_deg", 0.017453292519943295, "°"};
 inline constexpr unit radians{"_rad", 1.0, "rad"};
 
 /// Allowed ranges of numbers (checked on the value as written).
-enum class range : std::uint8_t { any, non_negative, positive };
+/// `size`: the size of a footprint, at least `smallest_size` (a road user's, not a micrometre's: the
+/// planner refuses footprints whose tunneling time step falls below its floor, docs/method.md §5).
+enum class range : std::uint8_t { any, non_negative, positive, size };
+inline constexpr double smallest_size = 0.01;  ///< [m]
 
 /// Where the loader is: the source name and the parameters fields may reference.
 struct context {

@@ -108,6 +108,8 @@ const std::vector<error_case> cases{
     {"out of range", with_line(5, "duration_s: -5"), 5, "duration_s", {"= -5", "expected a positive number [s]"}},
     {"not finite", with_line(5, "duration_s: inf"), 5, "duration_s", {"= inf", "expected a finite number"}},
     {"negative speed", with_line(17, "    speed_kmh: -36"), 17, "agents[1].speed_kmh", {"= -36", "expected a number ≥ 0 [km/h]"}},
+    {"a footprint of micrometres", with_line(17, "    speed_kmh: 36\n    footprint: {length_m: 4.5, width_m: 0.000002}"), 18,
+     "agents[1].footprint.width_m", {"= 0.000002", "expected a size of at least 0.01 [m]"}},
     {"unknown parameter with a suggestion", with_line(13, "    desired_speed_kmh: $a_kmhh"), 13, "agents[0].desired_speed_kmh",
      {"$a_kmhh", "no parameter \"a_kmhh\"", "did you mean $a_kmh?"}},
     {"parameter in the wrong unit", with_line(13, "    desired_speed_mps: $a_kmh"), 13, "agents[0].desired_speed_mps",
