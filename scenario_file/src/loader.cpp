@@ -321,8 +321,8 @@ class mapper {
     out.start_lateral_offset = v.quantity_or("start_lateral_offset", {metres}, 0.0);
     out.start_time = v.quantity_or("start_time", {seconds}, 0.0, range::non_negative);
     out.before_start = read_before_start(v);
-    out.desired_speed = v.required_quantity("desired_speed", speed_units, range::non_negative);
-    out.initial_speed = v.quantity_or("initial_speed", speed_units, out.desired_speed, range::non_negative);
+    out.desired_speed = v.required_quantity("desired_speed", speed_units, range::speed);
+    out.initial_speed = v.quantity_or("initial_speed", speed_units, out.desired_speed, range::speed);
     out.shape = read_footprint(v);
     out.limits = read_limits(v.child("limits"));
     out.planner = read_planner(v.child("planner"));
@@ -344,7 +344,7 @@ class mapper {
     l.max_deceleration = v.quantity_or("max_deceleration", {mps2}, l.max_deceleration, range::positive);
     l.max_lateral_acceleration = v.quantity_or("max_lateral_acceleration", {mps2}, l.max_lateral_acceleration, range::positive);
     l.min_turning_radius = v.quantity_or("min_turning_radius", {metres}, l.min_turning_radius, range::positive);
-    l.speed_cap = v.quantity_or("speed_cap", speed_units, l.speed_cap, range::positive);
+    l.speed_cap = v.quantity_or("speed_cap", speed_units, l.speed_cap, range::positive_speed);
     if (auto f = v.get("steering")) l.steering = read_bool(ctx_, *f);
     return l;
   }
@@ -418,13 +418,13 @@ class mapper {
         const map_view kv(ctx_, {k});
         kv.allow(concat({"time_s"}, keys_of("speed", speed_units)));
         m.speed.knots.push_back({kv.required_quantity("time", {seconds}, range::non_negative),
-                                 kv.required_quantity("speed", speed_units, range::non_negative)});
+                                 kv.required_quantity("speed", speed_units, range::speed)});
         if (m.speed.knots.size() > 1 && !(m.speed.knots.back().time > m.speed.knots[m.speed.knots.size() - 2].time)) {
           fail_value(ctx_, kv.require("time_s"), "a time after the previous knot's");
         }
       }
     } else {
-      m.speed = mm::sim::speed_profile::constant(*v.quantity("speed", speed_units, range::non_negative));
+      m.speed = mm::sim::speed_profile::constant(*v.quantity("speed", speed_units, range::speed));
     }
     if (v.has("stop")) {
       const map_view s = v.child("stop");

@@ -109,12 +109,16 @@ void fail_value(const context& ctx, const field& f, const std::string& what) {
   ctx.fail(f.node, f.path, "= " + shown(ctx, f.node) + ": expected " + what);
 }
 
-double read_number(const context& ctx, const field& f, std::string_view label, range r) {
-  const std::string expected = std::string(r == range::positive       ? "a positive number"
-                                           : r == range::non_negative ? "a number ≥ 0"
-                                           : r == range::size         ? "a size of at least 0.01"
-                                                                      : "a number") +
-                               unit_text(label);
+double read_number(const context& ctx, const field& f, std::string_view label, range r, double to_si) {
+  const std::string expected =
+      r == range::speed || r == range::positive_speed
+          ? std::string(r == range::speed ? "a speed from 0" : "a speed above 0") + " to " +
+                number_text(largest_speed / to_si) + unit_text(label) + " (" + number_text(largest_speed) + " m/s)"
+                        : std::string(r == range::positive       ? "a positive number"
+                                      : r == range::non_negative ? "a number ≥ 0"
+                                      : r == range::size         ? "a size of at least " + number_text(smallest_size)
+                                                                 : "a number") +
+                              unit_text(label);
   if (!f.node.IsScalar()) fail_value(ctx, f, expected);
   const std::string& text = f.node.Scalar();
   double value = 0.0;
@@ -144,7 +148,9 @@ double read_number(const context& ctx, const field& f, std::string_view label, r
   }
   if (!std::isfinite(value)) fail_value(ctx, f, "a finite number" + unit_text(label));
   if ((r == range::non_negative && !(value >= 0.0)) || (r == range::positive && !(value > 0.0)) ||
-      (r == range::size && !(value >= smallest_size))) {
+      (r == range::size && !(value >= smallest_size)) ||
+      (r == range::speed && !(value >= 0.0 && value * to_si <= largest_speed)) ||
+      (r == range::positive_speed && !(value > 0.0 && value * to_si <= largest_speed))) {
     fail_value(ctx, f, expected);
   }
   return value;
@@ -313,7 +319,7 @@ std::optional<double> map_view::quantity(std::string_view base, units alternativ
   if (!found) return std::nullopt;
   for (const unit& u : alternatives) {
     if (found->key.size() == base.size() + u.suffix.size() && found->key.ends_with(u.suffix)) {
-      return read_number(*ctx_, *found, u.label, r) * u.to_si;
+      return read_number(*ctx_, *found, u.label, r, u.to_si) * u.to_si;
     }
   }
   return std::nullopt;  // unreachable: one_of only returns one of the keys

@@ -34,10 +34,13 @@ inline constexpr unit degrees{"_deg", 0.017453292519943295, "°"};
 inline constexpr unit radians{"_rad", 1.0, "rad"};
 
 /// Allowed ranges of numbers (checked on the value as written).
-/// `size`: the size of a footprint, at least `smallest_size` (a road user's, not a micrometre's: the
-/// planner refuses footprints whose tunneling time step falls below its floor, docs/method.md §5).
-enum class range : std::uint8_t { any, non_negative, positive, size };
-inline constexpr double smallest_size = 0.01;  ///< [m]
+/// `size`: the size of a footprint, at least `smallest_size`; `speed`: from 0 to `largest_speed`
+/// (in SI units), `positive_speed` above 0. Road users' sizes and speeds, not micrometres or thousands of metres per second:
+/// with both, the planner's tunneling time step (size over relative speed) stays far above its
+/// floor of 0.1 ms (docs/method.md §5, item 14): 0.05 m over 200 m/s is 0.25 ms.
+enum class range : std::uint8_t { any, non_negative, positive, size, speed, positive_speed };
+inline constexpr double smallest_size = 0.05;  ///< [m]
+inline constexpr double largest_speed = 100.0;  ///< [m/s]
 
 /// Where the loader is: the source name and the parameters fields may reference.
 struct context {
@@ -81,7 +84,8 @@ std::string shown(const context& ctx, const YAML::Node& node);
 
 /// Reads a number: a plain scalar or `$parameter`; the parameter's unit (its name's suffix)
 /// must match the field's unit suffix. `label` describes the unit for messages ("km/h", "" none).
-double read_number(const context& ctx, const field& f, std::string_view label, range r = range::any);
+/// `to_si`: the factor from the field's unit to SI, for `range::speed`.
+double read_number(const context& ctx, const field& f, std::string_view label, range r = range::any, double to_si = 1.0);
 /// A non-negative integer (`$parameter` allowed if integral) up to `max`.
 std::uint64_t read_integer(const context& ctx, const field& f, std::uint64_t max);
 bool read_bool(const context& ctx, const field& f);
