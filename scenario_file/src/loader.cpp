@@ -173,7 +173,7 @@ class mapper {
     mm::sim::sensing_noise& n = result_.scenario.noise;
     n.position_sd = v.quantity_or("position_sd", {metres}, 0.0, range::non_negative);
     n.heading_sd = v.quantity_or("heading_sd", angle_units, 0.0, range::non_negative);
-    n.speed_sd = v.quantity_or("speed_sd", speed_units, 0.0, range::non_negative);
+    n.speed_sd = v.quantity_or("speed_sd", speed_units, 0.0, range::speed);
   }
 
   void read_roundabout(const field& f) {
@@ -287,7 +287,12 @@ class mapper {
         case agent_kind_index::static_obstacle: {
           first.allow(static_keys);
           entry.index = s.static_obstacles.size();
-          s.static_obstacles.push_back({name, read_points(ctx_, first.require("vertices_m"), 3, mm::max_polygon_vertices)});
+          const field vertices = first.require("vertices_m");
+          std::vector<vec2> points = read_points(ctx_, vertices, 3, mm::max_polygon_vertices);
+          if (!(mm::smallest_dimension(mm::convex_polygon{points}) >= smallest_size)) {
+            fail_value(ctx_, vertices, "a polygon at least " + number_text(smallest_size) + " m wide in every direction");
+          }
+          s.static_obstacles.push_back({name, std::move(points)});
           break;
         }
       }

@@ -110,6 +110,8 @@ const std::vector<error_case> cases{
     {"negative speed", with_line(17, "    speed_kmh: -36"), 17, "agents[1].speed_kmh", {"= -36", "expected a speed from 0 to 360 [km/h] (100 m/s)"}},
     {"a speed no road user has", with_line(13, "    desired_speed_mps: 1e27"), 13, "agents[0].desired_speed_mps",
      {"= 1e27", "expected a speed from 0 to 100 [m/s]"}},
+    {"a static obstacle as thin as a sheet", with_line(17, "    speed_kmh: 36\n  - name: wall\n    kind: static_obstacle\n    vertices_m: [[0, 10], [20, 10], [20, 10.001]]"), 20,
+     "agents[2].vertices_m", {"expected a polygon at least 0.05 m wide in every direction"}},
     {"a footprint of micrometres", with_line(17, "    speed_kmh: 36\n    footprint: {length_m: 4.5, width_m: 0.000002}"), 18,
      "agents[1].footprint.width_m", {"= 0.000002", "expected a size of at least 0.05 [m]"}},
     {"unknown parameter with a suggestion", with_line(13, "    desired_speed_kmh: $a_kmhh"), 13, "agents[0].desired_speed_kmh",
