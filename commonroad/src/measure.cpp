@@ -17,6 +17,11 @@ const obstacle* find_obstacle(const scenario& s, std::uint32_t id) {
 
 bool is_pedestrian(const obstacle& o) { return o.type == "pedestrian"; }
 
+/// A road user the planner can take as its ego: a recorded vehicle (`measurable_road_users`).
+bool can_be_measured(const obstacle& o) {
+  return o.role == obstacle_role::dynamic_obstacle && !is_pedestrian(o) && !o.states.empty();
+}
+
 double step_time(const scenario& s, std::int64_t step) { return static_cast<double>(step) * s.time_step; }
 
 /// The state of `o` at `step`, or null when it is not recorded then (states are at consecutive steps).
@@ -107,16 +112,14 @@ plan_input planning_input(const scenario& s, const measure_options& options, std
         const observation x = observed(s, *last);
         track.history.push_back(x);
         track.motion = motion_estimate{x.pose, x.speed, last->yaw_rate.value_or(0.0)};
-        in.obstacles.push_back(std::move(track));
-        if (ids != nullptr) ids->push_back(o.id);
-        continue;
+      } else {
+        const auto end = static_cast<std::ptrdiff_t>(last - o.states.data()) + 1;
+        std::ptrdiff_t begin = end - 2;
+        while (begin > 0 && in.time - step_time(s, o.states[static_cast<std::size_t>(begin - 1)].step) <= window + 1e-9) {
+          --begin;
+        }
+        for (std::ptrdiff_t i = begin; i < end; ++i) track.history.push_back(observed(s, o.states[static_cast<std::size_t>(i)]));
       }
-      const auto end = static_cast<std::ptrdiff_t>(last - o.states.data()) + 1;
-      std::ptrdiff_t begin = end - 2;
-      while (begin > 0 && in.time - step_time(s, o.states[static_cast<std::size_t>(begin - 1)].step) <= window + 1e-9) {
-        --begin;
-      }
-      for (std::ptrdiff_t i = begin; i < end; ++i) track.history.push_back(observed(s, o.states[static_cast<std::size_t>(i)]));
     }
     in.obstacles.push_back(std::move(track));
     if (ids != nullptr) ids->push_back(o.id);
@@ -153,7 +156,7 @@ maneuver recorded_maneuver(const obstacle& o, std::size_t k, double dt) {
   const state& b = o.states[from + 1];
   maneuver u;
   u.acceleration = (std::max(b.velocity, 0.0) - std::max(a.velocity, 0.0)) / dt;
-  const double distance = std::hypot(b.position.x - a.position.x, b.position.y - a.position.y);
+  const double distance = norm(b.position - a.position);
   if (distance >= 1e-3) u.curvature = wrap_angle(b.orientation - a.orientation) / distance;
   return u;
 }
@@ -161,26 +164,23 @@ maneuver recorded_maneuver(const obstacle& o, std::size_t k, double dt) {
 std::vector<std::uint32_t> measurable_road_users(const scenario& s) {
   std::vector<std::uint32_t> ids;
   for (const obstacle& o : s.obstacles) {
-    if (o.role == obstacle_role::dynamic_obstacle && !is_pedestrian(o) && !o.states.empty()) ids.push_back(o.id);
+    if (can_be_measured(o)) ids.push_back(o.id);
   }
   return ids;
 }
 
 std::optional<std::uint32_t> recorded_ego(const scenario& s, const planning_problem& problem) {
-  const auto measurable = [](const obstacle* o) {
-    return o != nullptr && o->role == obstacle_role::dynamic_obstacle && !is_pedestrian(*o) && !o->states.empty();
-  };
+  const auto measurable = [](const obstacle* o) { return o != nullptr && can_be_measured(*o); };
   if (const obstacle* o = find_obstacle(s, problem.id); measurable(o)) return o->id;
   if (problem.id > 90000) {
     if (const obstacle* o = find_obstacle(s, problem.id - 90000); measurable(o)) return o->id;
   }
   const state& start = problem.initial;
   for (const obstacle& o : s.obstacles) {
-    if (!measurable(&o)) continue;
+    if (!can_be_measured(o)) continue;
     const state* x = state_at(o, start.step);
     if (x == nullptr) x = &o.states.front();
-    const double d = std::hypot(x->position.x - start.position.x, x->position.y - start.position.y);
-    if (d <= 0.5 && std::abs(wrap_angle(x->orientation - start.orientation)) <= 0.1 &&
+    if (norm(x->position - start.position) <= 0.5 && std::abs(wrap_angle(x->orientation - start.orientation)) <= 0.1 &&
         std::abs(x->velocity - start.velocity) <= 0.5) {
       return o.id;
     }
