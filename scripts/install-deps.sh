@@ -10,6 +10,7 @@ packages=(
   libpugixml-dev                      # CommonRoad XML files (maneuvermap measure)
   libgoogle-perftools-dev             # tcmalloc, the executables' allocator (docs/performance.md)
   python3 python3-matplotlib python3-numpy
+  python3-dev pybind11-dev python3-pytest  # the Python module maneuvermap and its tests (docs/python.md)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,18 @@
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace mm::python {
+
+namespace py = pybind11;
+
+/// The planner (`mm`): value types, `plan`, `planner`, `plan_reference` and the motion models.
+void bind_core(py::module_& m);
+
+/// The simulator and the scenario files (`mm::sim`, `mm::scenario_file`), into `m`.
+void bind_sim(py::module_& m);
+
+/// The CommonRoad reader and measurement (`mm::commonroad`), into `m`.
+void bind_commonroad(py::module_& m);
+
+}  // namespace mm::python

@@ -1,0 +1,67 @@
+#pragma once
+
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mm/forecast.hpp"
+
+// Lists that Python code fills in place (`input.obstacles.append(track)`) are bound as opaque
+// list-like types with reference semantics; every other std::vector converts to a Python list.
+PYBIND11_MAKE_OPAQUE(std::vector<mm::obstacle_track>)
+PYBIND11_MAKE_OPAQUE(std::vector<mm::observation>)
+
+namespace mm::python {
+
+namespace py = pybind11;
+
+/// The names of the fields (the properties) of a bound class, in the order they were bound; with
+/// `writable_only`, those that can be set (a value type's own fields, not what is computed from them).
+std::vector<std::string> field_names(py::handle type, bool writable_only = false);
+
+/// Sets the fields of `self` from keyword arguments; a name that is not a field is a TypeError
+/// that names it and lists the fields (unknown keys are errors, as in the scenario files).
+void set_fields(py::handle self, const py::kwargs& fields);
+
+/// `type_name(field=repr(value), ...)` over every field (every writable one with `writable_only`).
+std::string fields_repr(py::handle self, bool writable_only = false);
+
+/// Gives a bound value type a keyword constructor (`ego_state(speed=8.3)`), `__repr__` and
+/// `__eq__` by fields (values compare equal when every field does).
+template <class T, class... Options>
+py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
+  c.def(py::init<>());
+  c.def(py::init([](const py::kwargs& fields) {
+          py::object value = py::cast(T{});
+          set_fields(value, fields);
+          return value.cast<T>();
+        }),
+        "Every field from its keyword argument; the others keep their defaults.");
+  c.def("__repr__", [](py::handle self) { return fields_repr(self, true); });
+  c.def("__eq__", [](py::handle self, py::handle other) {
+    if (!py::isinstance(other, py::type::of(self))) return false;
+    for (const std::string& name : field_names(py::type::of(self), true)) {
+      if (!self.attr(name.c_str()).equal(other.attr(name.c_str()))) return false;
+    }
+    return true;
+  });
+  c.attr("__hash__") = py::none();
+  return c;
+}
+
+/// A copy of `values` as a one-dimensional NumPy array.
+template <class T>
+py::array_t<T> array_of(const std::vector<T>& values) {
+  py::array_t<T> out(static_cast<py::ssize_t>(values.size()));
+  T* data = out.mutable_data();
+  for (std::size_t i = 0; i < values.size(); ++i) data[i] = values[i];
+  return out;
+}
+
+/// A copy of 0/1 flags as a one-dimensional NumPy array of bool.
+py::array_t<bool> flags_of(const std::vector<std::uint8_t>& flags);
+
+}  // namespace mm::python

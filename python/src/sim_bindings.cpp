@@ -1,0 +1,448 @@
+// Bindings of the simulator and its scenario files (docs/python.md): load a scenario, run it step by
+// step or whole, read every agent's states and every planning vehicle's Maneuverability Map.
+#include <pybind11/stl.h>
+#include <pybind11/stl_bind.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "bindings.hpp"
+#include "fields.hpp"
+#include "mm/scenario_file/builtin.hpp"
+#include "mm/scenario_file/loader.hpp"
+#include "mm/sim/simulation.hpp"
+
+PYBIND11_MAKE_OPAQUE(std::vector<mm::sim::planning_vehicle>)
+
+namespace mm::python {
+
+namespace {
+
+using scenario_file::loaded_scenario;
+using sim::agent_id;
+
+/// The Maneuverability Map of one planning vehicle over a run: one row per planning step.
+struct map_record {
+  std::string agent;
+  std::vector<double> times;           ///< when it planned [s]
+  std::vector<double> forecast_times;  ///< τ_i [s]
+  std::vector<double> mi_brake;        ///< row-major (steps × forecast times)
+  std::vector<double> mi_accelerate;
+  std::vector<std::uint8_t> excluded;
+  std::vector<double> forecast_time;   ///< τ̄ [s]
+  std::vector<std::uint8_t> selected_family;
+  std::vector<std::uint8_t> mode;
+  std::vector<double> time_to_collision;
+  std::vector<double> command_acceleration;
+  std::vector<double> command_curvature;
+  std::vector<double> cpu_time_us;
+};
+
+/// Everything a run of `run` recorded: the states of every agent at every step, the maps.
+struct run_record {
+  std::string scenario;
+  std::string source;
+  std::vector<sim::agent_info> agents;
+  std::vector<double> times;
+  std::size_t agent_count = 0;
+  // (steps × agents), row-major
+  std::vector<double> x, y, heading, speed, acceleration, curvature, arc_length, lateral_offset;
+  std::vector<std::uint8_t> status;
+  std::vector<map_record> maps;  ///< one per planning vehicle, in id order
+  std::vector<sim::run_metrics> metrics;
+  std::vector<sim::crash_event> crashes;
+};
+
+py::array_t<double> matrix_of(const std::vector<double>& values, std::size_t columns) {
+  const auto c = static_cast<py::ssize_t>(columns);
+  const auto r = c == 0 ? py::ssize_t{0} : static_cast<py::ssize_t>(values.size()) / c;
+  py::array_t<double> out({r, c});
+  std::copy_n(values.begin(), static_cast<std::size_t>(r * c), out.mutable_data());
+  return out;
+}
+
+template <class T>
+py::array_t<T> matrix_of_codes(const std::vector<std::uint8_t>& values, std::size_t columns) {
+  const auto c = static_cast<py::ssize_t>(columns);
+  const auto r = c == 0 ? py::ssize_t{0} : static_cast<py::ssize_t>(values.size()) / c;
+  py::array_t<T> out({r, c});
+  T* data = out.mutable_data();
+  for (std::size_t i = 0; i < static_cast<std::size_t>(r * c); ++i) data[i] = static_cast<T>(values[i]);
+  return out;
+}
+
+void record_instant(const sim::simulation& now, run_record& record) {
+  record.times.push_back(now.time());
+  for (agent_id id = 0; id < now.agent_count(); ++id) {
+    const sim::agent_state& a = now.state(id);
+    record.x.push_back(a.pose.position.x);
+    record.y.push_back(a.pose.position.y);
+    record.heading.push_back(a.pose.heading);
+    record.speed.push_back(a.speed);
+    record.acceleration.push_back(a.acceleration);
+    record.curvature.push_back(a.curvature);
+    record.arc_length.push_back(a.arc_length);
+    record.lateral_offset.push_back(a.lateral_offset);
+    record.status.push_back(static_cast<std::uint8_t>(a.status));
+  }
+  for (agent_id id = 0; id < now.planning_vehicle_count(); ++id) {
+    if (!now.planned_now(id)) continue;
+    const sim::plan_record& p = *now.last_plan(id);
+    const plan_result& r = p.result;
+    map_record& map = record.maps[id];
+    if (map.forecast_times.empty()) map.forecast_times = r.forecast_times;
+    map.times.push_back(p.time);
+    map.mi_brake.insert(map.mi_brake.end(), r.mi_brake.begin(), r.mi_brake.end());
+    map.mi_accelerate.insert(map.mi_accelerate.end(), r.mi_accelerate.begin(), r.mi_accelerate.end());
+    map.excluded.insert(map.excluded.end(), r.excluded.begin(), r.excluded.end());
+    map.forecast_time.push_back(r.forecast_time);
+    map.selected_family.push_back(static_cast<std::uint8_t>(r.selected_family));
+    map.mode.push_back(static_cast<std::uint8_t>(r.mode));
+    map.time_to_collision.push_back(r.time_to_collision);
+    map.command_acceleration.push_back(r.command.acceleration);
+    map.command_curvature.push_back(r.command.curvature);
+    map.cpu_time_us.push_back(p.cpu_time_us);
+  }
+}
+
+run_record run_whole(const loaded_scenario& loaded, const sim::run_options& options) {
+  sim::simulation simulation(loaded.scenario, options);
+  run_record record;
+  record.scenario = loaded.scenario.name;
+  record.source = loaded.source;
+  record.agent_count = simulation.agent_count();
+  for (agent_id id = 0; id < simulation.agent_count(); ++id) record.agents.push_back(simulation.info(id));
+  record.maps.resize(simulation.planning_vehicle_count());
+  for (agent_id id = 0; id < simulation.planning_vehicle_count(); ++id) {
+    record.maps[id].agent = simulation.info(id).name;
+  }
+  sim::run(simulation, [&](const sim::simulation& now) { record_instant(now, record); });
+  record.metrics = simulation.all_metrics();
+  record.crashes.assign(simulation.crashes().begin(), simulation.crashes().end());
+  return record;
+}
+
+scenario_file::load_options load_options_of(const std::optional<std::map<std::string, double>>& set,
+                                            const std::optional<forecast_policy>& policy,
+                                            const std::optional<std::uint64_t>& seed) {
+  scenario_file::load_options options;
+  if (set) options.overrides.assign(set->begin(), set->end());
+  options.policy = policy;
+  options.seed = seed;
+  return options;
+}
+
+sim::run_options run_options_of(std::size_t jobs, bool map_columns, bool measure_cpu_time) {
+  sim::run_options options;
+  options.jobs = jobs;
+  options.map_columns = map_columns;
+  options.measure_cpu_time = measure_cpu_time;
+  return options;
+}
+
+void bind_scenarios(py::module_& m) {
+  static auto* error = new py::exception<scenario_file::scenario_error>(m, "scenario_error", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr thrown) {
+    try {
+      if (thrown) std::rethrow_exception(thrown);
+    } catch (const scenario_file::scenario_error& e) {
+      py::object instance = py::reinterpret_borrow<py::object>(error->ptr())(e.what());
+      instance.attr("source") = e.source();
+      instance.attr("line") = e.line();
+      instance.attr("column") = e.column();
+      instance.attr("field") = e.field();
+      instance.attr("problem") = e.problem();
+      PyErr_SetObject(error->ptr(), instance.ptr());
+    }
+  });
+
+  py::class_<sim::planning_vehicle>(m, "planning_vehicle",
+                                    "A vehicle that follows its path and avoids the others with the planner.")
+      .def_readwrite("name", &sim::planning_vehicle::name)
+      .def_readwrite("start_time", &sim::planning_vehicle::start_time, "[s]")
+      .def_readwrite("initial_speed", &sim::planning_vehicle::initial_speed, "[m/s]")
+      .def_readwrite("desired_speed", &sim::planning_vehicle::desired_speed, "[m/s]")
+      .def_readwrite("shape", &sim::planning_vehicle::shape, "[m]")
+      .def_readwrite("limits", &sim::planning_vehicle::limits, "spec §3")
+      .def_readwrite("planner", &sim::planning_vehicle::planner, "its planner_config")
+      .def_readwrite("avoidance", &sim::planning_vehicle::avoidance, "False: u_nom without planning")
+      .def_readwrite("planning_period", &sim::planning_vehicle::planning_period, "plan every k-th step")
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+  py::bind_vector<std::vector<sim::planning_vehicle>>(m, "planning_vehicle_list");
+  py::implicitly_convertible<py::list, std::vector<sim::planning_vehicle>>();
+
+  py::class_<sim::scenario>(m, "scenario", "Everything a run needs (change it before the run starts).")
+      .def_readwrite("name", &sim::scenario::name)
+      .def_readwrite("description", &sim::scenario::description)
+      .def_readwrite("duration", &sim::scenario::duration, "[s]")
+      .def_readwrite("time_step", &sim::scenario::time_step, "dt [s]")
+      .def_readwrite("seed", &sim::scenario::seed, "seeds the sensor noise")
+      .def_readwrite("planning_vehicles", &sim::scenario::planning_vehicles)
+      .def("validation_error", [](const sim::scenario& s) { return sim::validation_error(s); },
+           "The first problem, naming the agent and the field, or None.")
+      .def("__repr__", [](const sim::scenario& s) {
+        return "scenario(name=" + py::repr(py::str(s.name)).cast<std::string>() + ", " +
+               std::to_string(s.planning_vehicles.size()) + " planning vehicles)";
+      });
+
+  py::class_<scenario_file::parameter>(m, "parameter", "A named number of the file's `parameters:`.")
+      .def_readonly("name", &scenario_file::parameter::name)
+      .def_readonly("value", &scenario_file::parameter::value, "after overrides")
+      .def_readonly("default_value", &scenario_file::parameter::default_value, "as written in the file")
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+
+  py::class_<loaded_scenario>(m, "loaded_scenario", "A scenario file mapped onto the simulator's types.")
+      .def_readwrite("scenario", &loaded_scenario::scenario)
+      .def_readonly("parameters", &loaded_scenario::parameters)
+      .def_readonly("source", &loaded_scenario::source, "file name or builtin:NAME")
+      .def("__repr__", [](const loaded_scenario& s) {
+        return "loaded_scenario(source=" + py::repr(py::str(s.source)).cast<std::string>() + ", name=" +
+               py::repr(py::str(s.scenario.name)).cast<std::string>() + ")";
+      });
+
+  m.def("builtin_scenarios", [] {
+    std::vector<std::string> names;
+    for (const auto& b : scenario_file::builtin_scenarios()) names.emplace_back(b.name);
+    return names;
+  }, "The names of the built-in scenarios.");
+  m.def("load",
+        [](const std::string& file_or_builtin, const std::optional<std::map<std::string, double>>& set,
+           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed) {
+          return scenario_file::load(file_or_builtin, load_options_of(set, policy, seed));
+        },
+        py::arg("file_or_builtin"), py::kw_only(), py::arg("set") = py::none(), py::arg("policy") = py::none(),
+        py::arg("seed") = py::none(),
+        "A built-in scenario by name or a scenario file (docs/scenario-format.md), with parameter overrides "
+        "(`set={'a_kmh': 20}`), a forecast policy for every planning vehicle and a seed: as `maneuvermap run`. "
+        "scenario_error (a ValueError) names the file, line, column and field of any problem.");
+  m.def("load_text",
+        [](const std::string& text, const std::string& source, const std::optional<std::map<std::string, double>>& set,
+           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed) {
+          return scenario_file::load_text(text, source, load_options_of(set, policy, seed));
+        },
+        py::arg("text"), py::arg("source") = "<text>", py::kw_only(), py::arg("set") = py::none(),
+        py::arg("policy") = py::none(), py::arg("seed") = py::none(), "As load, from the YAML text itself.");
+}
+
+void bind_simulation(py::module_& m) {
+  py::enum_<sim::agent_kind>(m, "agent_kind")
+      .value("planning_vehicle", sim::agent_kind::planning_vehicle)
+      .value("scripted_vehicle", sim::agent_kind::scripted_vehicle)
+      .value("pedestrian", sim::agent_kind::pedestrian)
+      .value("static_obstacle", sim::agent_kind::static_obstacle);
+  py::enum_<sim::agent_status>(m, "agent_status")
+      .value("not_started", sim::agent_status::not_started)
+      .value("waiting", sim::agent_status::waiting)
+      .value("active", sim::agent_status::active)
+      .value("stopped", sim::agent_status::stopped)
+      .value("crashed", sim::agent_status::crashed)
+      .value("finished", sim::agent_status::finished);
+  py::enum_<sim::bypass_side>(m, "bypass_side")
+      .value("none", sim::bypass_side::none)
+      .value("left", sim::bypass_side::left)
+      .value("right", sim::bypass_side::right);
+
+  py::class_<sim::agent_info>(m, "agent_info", "The fixed description of an agent.")
+      .def_readonly("name", &sim::agent_info::name)
+      .def_readonly("kind", &sim::agent_info::kind)
+      .def_readonly("shape", &sim::agent_info::shape, "about its reference point")
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+  py::class_<sim::agent_state>(m, "agent_state", "The true state of an agent at the current time.")
+      .def_readonly("status", &sim::agent_state::status)
+      .def_readonly("pose", &sim::agent_state::pose, "[m], heading wrapped to (−π, π]")
+      .def_readonly("speed", &sim::agent_state::speed, "[m/s]")
+      .def_readonly("acceleration", &sim::agent_state::acceleration, "over the coming step [m/s²]")
+      .def_readonly("curvature", &sim::agent_state::curvature, "over the coming step [1/m]")
+      .def_readonly("arc_length", &sim::agent_state::arc_length, "on its path [m]")
+      .def_readonly("lateral_offset", &sim::agent_state::lateral_offset, "from its path [m], left positive")
+      .def("present", &sim::agent_state::present, "observed and collidable")
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+  py::class_<sim::plan_record>(m, "plan_record", "The last planning step of a planning vehicle.")
+      .def_readonly("time", &sim::plan_record::time, "[s]")
+      .def_readonly("result", &sim::plan_record::result)
+      .def_readonly("cpu_time_us", &sim::plan_record::cpu_time_us, "[µs]; 0 unless measured")
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+  py::class_<sim::crash_event>(m, "crash_event", "An overlap of two agents, one of them a planning vehicle.")
+      .def_readonly("time", &sim::crash_event::time, "[s]")
+      .def_readonly("first", &sim::crash_event::first)
+      .def_readonly("second", &sim::crash_event::second)
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+  py::class_<sim::run_metrics>(m, "run_metrics", "The run metrics of one planning vehicle (spec §12).")
+      .def_readonly("agent", &sim::run_metrics::agent)
+      .def_readonly("crash", &sim::run_metrics::crash)
+      .def_readonly("crash_time_s", &sim::run_metrics::crash_time_s)
+      .def_readonly("crash_with", &sim::run_metrics::crash_with)
+      .def_readonly("min_dist_m", &sim::run_metrics::min_dist_m)
+      .def_readonly("min_dist_time_s", &sim::run_metrics::min_dist_time_s)
+      .def_readonly("closest_agent", &sim::run_metrics::closest_agent)
+      .def_readonly("ttc_at_min_s", &sim::run_metrics::ttc_at_min_s)
+      .def_readonly("speed_kmh", &sim::run_metrics::speed_kmh)
+      .def_readonly("bypass", &sim::run_metrics::bypass)
+      .def_readonly("lateral_offset_at_min_m", &sim::run_metrics::lateral_offset_at_min_m)
+      .def_readonly("max_lateral_offset_m", &sim::run_metrics::max_lateral_offset_m)
+      .def_readonly("min_speed_kmh", &sim::run_metrics::min_speed_kmh)
+      .def_readonly("max_speed_kmh", &sim::run_metrics::max_speed_kmh)
+      .def_readonly("time_in_brake_s", &sim::run_metrics::time_in_brake_s)
+      .def_readonly("time_in_accel_s", &sim::run_metrics::time_in_accel_s)
+      .def_readonly("planning_steps", &sim::run_metrics::planning_steps)
+      .def_readonly("cpu_median_us", &sim::run_metrics::cpu_median_us)
+      .def_readonly("cpu_p99_us", &sim::run_metrics::cpu_p99_us)
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+
+  py::class_<sim::simulation>(m, "simulation",
+                              "A run of a scenario on a fixed time grid, step by step (docs/simulator.md).")
+      .def(py::init([](const loaded_scenario& loaded, std::size_t jobs, bool map_columns, bool measure_cpu_time) {
+             return std::make_unique<sim::simulation>(loaded.scenario,
+                                                      run_options_of(jobs, map_columns, measure_cpu_time));
+           }),
+           py::arg("scenario"), py::kw_only(), py::arg("jobs") = 1, py::arg("map_columns") = true,
+           py::arg("measure_cpu_time") = false, py::call_guard<py::gil_scoped_release>(),
+           "Places every agent at t = 0 and makes the first decisions. ValueError when the scenario is invalid.")
+      .def(py::init([](const sim::scenario& s, std::size_t jobs, bool map_columns, bool measure_cpu_time) {
+             return std::make_unique<sim::simulation>(s, run_options_of(jobs, map_columns, measure_cpu_time));
+           }),
+           py::arg("scenario"), py::kw_only(), py::arg("jobs") = 1, py::arg("map_columns") = true,
+           py::arg("measure_cpu_time") = false, py::call_guard<py::gil_scoped_release>())
+      .def("step", &sim::simulation::step, py::call_guard<py::gil_scoped_release>(),
+           "Advances one time step: motion, crashes, metrics, sensing and decisions. No-op once ended.")
+      .def("ended", &sim::simulation::ended)
+      .def_property_readonly("time", &sim::simulation::time, "t_k [s]")
+      .def_property_readonly("step_index", &sim::simulation::step_index, "k")
+      .def_property_readonly("agent_count", &sim::simulation::agent_count)
+      .def_property_readonly("planning_vehicle_count", &sim::simulation::planning_vehicle_count,
+                             "their ids are 0..count−1")
+      .def("info", &sim::simulation::info, py::arg("id"), py::return_value_policy::copy)
+      .def("state", &sim::simulation::state, py::arg("id"), py::return_value_policy::copy)
+      .def("find", &sim::simulation::find, py::arg("name"), "The id of the agent called `name`, or None.")
+      .def("last_plan",
+           [](const sim::simulation& s, agent_id id) -> std::optional<sim::plan_record> {
+             const sim::plan_record* p = s.last_plan(id);
+             if (p == nullptr) return std::nullopt;
+             return *p;
+           },
+           py::arg("id"), "The last planning step of planning vehicle `id`, or None.")
+      .def("planned_now", &sim::simulation::planned_now, py::arg("id"))
+      .def("planning_input", &sim::simulation::planning_input, py::arg("id"),
+           "The input planning vehicle `id` plans on now (None when it is not in the world).")
+      .def("crashes", [](const sim::simulation& s) {
+        return std::vector<sim::crash_event>(s.crashes().begin(), s.crashes().end());
+      })
+      .def("metrics", &sim::simulation::metrics, py::arg("id"), "spec §12")
+      .def("all_metrics", &sim::simulation::all_metrics)
+      .def("run", [](sim::simulation& s) { sim::run(s); }, py::call_guard<py::gil_scoped_release>(),
+           "Steps to the end.");
+
+  py::class_<map_record>(m, "map_record",
+                         "The Maneuverability Map of one planning vehicle over a run: a row per planning step.")
+      .def_readonly("agent", &map_record::agent)
+      .def_property_readonly("times", [](const map_record& r) { return array_of(r.times); }, "[s], shape (steps,)")
+      .def_property_readonly("forecast_times", [](const map_record& r) { return array_of(r.forecast_times); },
+                             "τ_i [s]")
+      .def_property_readonly("mi_brake",
+                             [](const map_record& r) { return matrix_of(r.mi_brake, r.forecast_times.size()); },
+                             "MI−, shape (steps, forecast times); no columns without map_columns")
+      .def_property_readonly("mi_accelerate",
+                             [](const map_record& r) { return matrix_of(r.mi_accelerate, r.forecast_times.size()); },
+                             "MI+, shape (steps, forecast times)")
+      .def_property_readonly("excluded", [](const map_record& r) {
+        return matrix_of_codes<bool>(r.excluded, r.forecast_times.size());
+      }, "τ_i > TTC, shape (steps, forecast times)")
+      .def_property_readonly("forecast_time", [](const map_record& r) { return array_of(r.forecast_time); }, "τ̄ [s]")
+      .def_property_readonly("selected_family", [](const map_record& r) { return array_of(r.selected_family); },
+                             "int(maneuvermap.family.…)")
+      .def_property_readonly("mode", [](const map_record& r) { return array_of(r.mode); },
+                             "int(maneuvermap.planning_mode.…)")
+      .def_property_readonly("time_to_collision", [](const map_record& r) { return array_of(r.time_to_collision); },
+                             "[s], inf for none")
+      .def_property_readonly("command_acceleration",
+                             [](const map_record& r) { return array_of(r.command_acceleration); }, "[m/s²]")
+      .def_property_readonly("command_curvature", [](const map_record& r) { return array_of(r.command_curvature); },
+                             "[1/m]")
+      .def_property_readonly("cpu_time_us", [](const map_record& r) { return array_of(r.cpu_time_us); },
+                             "[µs]; 0 unless measure_cpu_time")
+      .def("__repr__", [](const map_record& r) {
+        return "map_record(agent=" + py::repr(py::str(r.agent)).cast<std::string>() + ", " +
+               std::to_string(r.times.size()) + " planning steps)";
+      });
+
+  py::class_<run_record>(m, "run_record",
+                         "A whole run: every agent's state at every step (arrays of shape (steps, agents)), "
+                         "every planning vehicle's map, the metrics and the crashes.")
+      .def_readonly("scenario", &run_record::scenario, "its name")
+      .def_readonly("source", &run_record::source)
+      .def_readonly("agents", &run_record::agents, "in id order: planning vehicles first")
+      .def_property_readonly("times", [](const run_record& r) { return array_of(r.times); }, "t_k [s]")
+      .def_property_readonly("x", [](const run_record& r) { return matrix_of(r.x, r.agent_count); }, "[m]")
+      .def_property_readonly("y", [](const run_record& r) { return matrix_of(r.y, r.agent_count); }, "[m]")
+      .def_property_readonly("heading", [](const run_record& r) { return matrix_of(r.heading, r.agent_count); },
+                             "[rad]")
+      .def_property_readonly("speed", [](const run_record& r) { return matrix_of(r.speed, r.agent_count); }, "[m/s]")
+      .def_property_readonly("acceleration",
+                             [](const run_record& r) { return matrix_of(r.acceleration, r.agent_count); },
+                             "applied over the coming step [m/s²]")
+      .def_property_readonly("curvature", [](const run_record& r) { return matrix_of(r.curvature, r.agent_count); },
+                             "applied over the coming step [1/m]")
+      .def_property_readonly("arc_length", [](const run_record& r) { return matrix_of(r.arc_length, r.agent_count); },
+                             "[m]")
+      .def_property_readonly("lateral_offset",
+                             [](const run_record& r) { return matrix_of(r.lateral_offset, r.agent_count); }, "[m]")
+      .def_property_readonly("status",
+                             [](const run_record& r) { return matrix_of_codes<std::uint8_t>(r.status, r.agent_count); },
+                             "int(maneuvermap.sim.agent_status.…)")
+      .def_property_readonly("present", [](const run_record& r) {
+        std::vector<std::uint8_t> present;
+        for (std::uint8_t s : r.status) present.push_back(sim::is_present(static_cast<sim::agent_status>(s)) ? 1 : 0);
+        return matrix_of_codes<bool>(present, r.agent_count);
+      }, "observed and collidable: the rows of maneuvermap run's trajectories.csv")
+      .def_readonly("maps", &run_record::maps, "one per planning vehicle, in id order")
+      .def("map", [](const run_record& r, const std::string& agent) {
+        for (const map_record& map : r.maps) {
+          if (map.agent == agent) return map;
+        }
+        throw py::key_error("no planning vehicle called '" + agent + "'");
+      }, py::arg("agent"), "The map of the planning vehicle called `agent`.")
+      .def_readonly("metrics", &run_record::metrics, "spec §12, one per planning vehicle")
+      .def_readonly("crashes", &run_record::crashes)
+      .def("__repr__", [](const run_record& r) {
+        return "run_record(scenario=" + py::repr(py::str(r.scenario)).cast<std::string>() + ", " +
+               std::to_string(r.times.size()) + " instants, " + std::to_string(r.agent_count) + " agents)";
+      });
+
+  m.def("run",
+        [](const py::object& what, const std::optional<std::map<std::string, double>>& set,
+           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, std::size_t jobs,
+           bool map_columns, bool measure_cpu_time) {
+          loaded_scenario loaded;
+          if (py::isinstance<loaded_scenario>(what)) {
+            if (set || policy || seed) {
+              throw py::value_error("set, policy and seed apply when loading: pass a name or a file to run()");
+            }
+            loaded = what.cast<loaded_scenario>();
+          } else {
+            const std::string name = py::str(what);
+            loaded = scenario_file::load(name, load_options_of(set, policy, seed));
+          }
+          const sim::run_options options = run_options_of(jobs, map_columns, measure_cpu_time);
+          const py::gil_scoped_release release;
+          return run_whole(loaded, options);
+        },
+        py::arg("scenario"), py::kw_only(), py::arg("set") = py::none(), py::arg("policy") = py::none(),
+        py::arg("seed") = py::none(), py::arg("jobs") = 1, py::arg("map_columns") = true,
+        py::arg("measure_cpu_time") = false,
+        "Runs a scenario (a built-in name, a file, or a loaded_scenario) to its end and returns its "
+        "run_record: what `maneuvermap run` writes, as arrays. Releases the GIL.");
+}
+
+}  // namespace
+
+void bind_sim(py::module_& m) {
+  bind_scenarios(m);
+  bind_simulation(m);
+}
+
+}  // namespace mm::python

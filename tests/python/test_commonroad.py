@@ -1,0 +1,54 @@
+"""CommonRoad recordings from Python: read, measure, and the same room as the planner (docs/python.md)."""
+import numpy as np
+import pytest
+
+import maneuvermap as mm
+
+PEDESTRIAN_COLLISION = "data/commonroad/OSC_PedestrianCollision-1_1_T-1.xml"
+
+
+def test_a_recording_reads_into_its_road_users_and_lanes(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
+    assert s.version in ("2018b", "2020a")
+    assert s.time_step > 0
+    assert s.lanelets and s.lanelets[0].left_bound.shape[1] == 2
+    users = mm.commonroad.measurable_road_users(s)
+    assert users
+    first = s.obstacle(users[0])
+    assert first.positions.shape == (len(first.states), 2)
+    assert np.all(np.diff(first.steps) == 1)
+
+
+def test_a_measurement_is_the_planner_on_the_recorded_inputs_bit_for_bit(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
+    agent = mm.commonroad.measurable_road_users(s)[0]
+    measured = mm.commonroad.measure(s, agent)
+    assert len(measured.steps) == len(s.obstacle(agent).states)
+    assert measured.mi_brake.shape == (len(measured.steps), 17)
+    assert np.all((0.0 <= measured.rooms) & (measured.rooms <= 1.0))
+    for k in range(0, len(measured.steps), 17):
+        step = measured.steps[k]
+        scene, ids = mm.commonroad.planning_input(s, agent, step.step)
+        assert ids == step.obstacle_ids
+        result = mm.plan(scene)
+        assert result.mi_brake.tobytes() == measured.mi_brake[k].tobytes()
+        assert result.mi_accelerate.tobytes() == measured.mi_accelerate[k].tobytes()
+        assert mm.commonroad.room(result) == measured.rooms[k]
+
+
+def test_the_car_of_the_pedestrian_collision_runs_out_of_room(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
+    car = mm.commonroad.recorded_ego(s, s.planning_problems[0])
+    measured = mm.commonroad.measure(s, car)
+    assert measured.rooms[0] > 0.5
+    assert measured.rooms.min() == 0.0
+
+
+def test_bad_files_and_unknown_road_users_raise_value_errors_that_say_where(source_dir):
+    with pytest.raises(mm.commonroad.read_error, match="bad.xml"):
+        mm.commonroad.read_scenario_text("<commonRoad>", "bad.xml")
+    with pytest.raises(ValueError, match="no-such-file.xml"):
+        mm.commonroad.read_scenario(source_dir / "no-such-file.xml")
+    s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
+    with pytest.raises(mm.commonroad.measure_error, match="424242"):
+        mm.commonroad.measure(s, 424242)

@@ -1,0 +1,158 @@
+"""The planner from Python: the value types go in, the result comes out as the C++ one (docs/python.md)."""
+import math
+import threading
+
+import numpy as np
+import pytest
+
+import maneuvermap as mm
+from conftest import crossing_scene
+
+
+def test_a_scene_without_obstacles_leaves_all_the_room_and_keeps_the_nominal_maneuver():
+    nominal = mm.maneuver(acceleration=0.5, curvature=0.01)
+    result = mm.plan(mm.plan_input(ego=mm.ego_state(speed=10.0), nominal=nominal))
+    assert result.ok()
+    assert result.mode == mm.planning_mode.nominal
+    assert result.command == nominal
+    assert len(result.forecast_times) == 17
+    np.testing.assert_array_equal(result.mi_brake, np.ones(17))
+    np.testing.assert_array_equal(result.mi_accelerate, np.ones(17))
+    assert math.isinf(result.time_to_collision)
+
+
+def test_the_crossing_scene_agrees_with_the_reference_planner_within_the_bound_of_the_spec():
+    scene = crossing_scene()
+    fast = mm.plan(scene)
+    reference = mm.plan_reference(scene)
+    assert fast.mode == mm.planning_mode.avoid
+    assert 1.0 < fast.time_to_collision < 2.5
+    assert np.max(np.abs(fast.mi_brake - reference.mi_brake)) <= 0.02
+    assert np.max(np.abs(fast.mi_accelerate - reference.mi_accelerate)) <= 0.02
+    assert 0.0 < fast.mi_brake_selected < 1.0
+
+
+def test_the_map_column_excludes_exactly_the_forecast_times_after_the_time_to_collision():
+    result = mm.plan(crossing_scene())
+    np.testing.assert_array_equal(result.forecast_times, np.arange(17) * 0.125)
+    np.testing.assert_array_equal(result.excluded, result.forecast_times > result.time_to_collision)
+    assert result.excluded.any() and not result.excluded.all()
+
+
+def test_a_kept_planner_returns_what_plan_returns_bit_for_bit_step_after_step():
+    kept = mm.planner()
+    scene = crossing_scene()
+    for k in range(5):
+        scene.time = 0.01 * k
+        for track in scene.obstacles:
+            last = track.history[len(track.history) - 1]
+            track.history.append(mm.observation(scene.time + 0.01, last.pose, last.speed))
+        scene.time += 0.01
+        a, b = kept.plan(scene), mm.plan(scene)
+        assert a.command == b.command
+        assert a.mi_brake.tobytes() == b.mi_brake.tobytes()
+        assert a.mi_accelerate.tobytes() == b.mi_accelerate.tobytes()
+        assert a.time_to_collision == b.time_to_collision
+
+
+def test_one_planner_shared_by_threads_gives_every_thread_the_result_of_plan():
+    kept = mm.planner()
+    scenes = [crossing_scene(ego_speed=v) for v in (8.0, 10.0, 12.0, 14.0)]
+    expected = [mm.plan(scene).mi_brake.tobytes() for scene in scenes]
+    results = [None] * len(scenes)
+
+    def work(i):
+        for _ in range(3):
+            results[i] = kept.plan(scenes[i]).mi_brake.tobytes()
+
+    threads = [threading.Thread(target=work, args=(i,)) for i in range(len(scenes))]
+    for thread in threads:
+        thread.start()
+    for thread in threads:
+        thread.join()
+    assert results == expected
+
+
+def test_obstacles_and_observations_appended_in_place_are_planned_on():
+    scene = mm.plan_input(ego=mm.ego_state(speed=10.0))
+    track = mm.obstacle_track(id=7, shape=mm.rectangle(4.0, 2.0))
+    scene.obstacles.append(track)
+    scene.obstacles[0].history.append(mm.observation(-0.1, mm.pose(15.0, 0.0, math.pi), 5.0))
+    scene.obstacles[0].history.append(mm.observation(0.0, mm.pose(14.5, 0.0, math.pi), 5.0))
+    result = mm.plan(scene)
+    assert [o.id for o in result.obstacles] == [7]
+    assert result.obstacles[0].relevant
+    assert result.obstacles[0].motion.speed == pytest.approx(5.0)
+    assert result.mi_brake_selected < 1.0
+
+
+def test_an_obstacle_observed_once_needs_its_motion():
+    scene = mm.plan_input(ego=mm.ego_state(speed=10.0))
+    track = mm.obstacle_track(id=3, history=[mm.observation(0.0, mm.pose(15.0, 0.0, math.pi), 5.0)])
+    scene.obstacles = [track]
+    with pytest.raises(ValueError, match="obstacles\\[0\\]"):
+        mm.plan(scene)
+    track.motion = mm.motion_estimate(pose=mm.pose(15.0, 0.0, math.pi), speed=5.0, yaw_rate=0.0)
+    scene.obstacles = [track]
+    assert mm.plan(scene).obstacles[0].relevant
+
+
+def test_invalid_input_raises_a_value_error_naming_the_field_its_value_and_what_was_expected():
+    scene = crossing_scene()
+    scene.ego.speed = -1.0
+    assert mm.validation_error(scene) == "ego.speed = -1: expected a finite number ≥ 0 of m/s"
+    with pytest.raises(ValueError, match="ego.speed = -1: expected"):
+        mm.plan(scene)
+    with pytest.raises(ValueError, match="ego.speed"):
+        mm.planner().plan(scene)
+
+
+def test_an_unknown_field_is_a_type_error_that_lists_the_fields():
+    with pytest.raises(TypeError, match="ego_state has no field 'sped'; its fields are: pose, speed, shape, limits"):
+        mm.ego_state(sped=3.0)
+
+
+def test_value_types_compare_and_print_by_their_fields():
+    assert mm.pose(1.0, 2.0, 0.5) == mm.pose(position=(1.0, 2.0), heading=0.5)
+    assert mm.pose(1.0, 2.0) != mm.pose(1.0, 2.5)
+    assert repr(mm.maneuver(-2.0, 0.1)) == "maneuver(acceleration=-2.0, curvature=0.1)"
+    assert tuple(mm.vec2(3.0, 4.0)) == (3.0, 4.0)
+
+
+def test_recorded_samples_come_as_arrays_of_one_length_and_the_command_is_a_safe_sample():
+    scene = crossing_scene()
+    scene.config.record_samples = True
+    result = mm.plan(scene)
+    samples = result.samples
+    count = len(samples.accelerations)
+    assert len(samples.families) == len(samples.curvatures) == count
+    assert count >= 2 * 15 * 21  # both families' grids, and their nominal-curvature columns
+    assert samples.end_points.shape == (count, 2)
+    assert samples.area_weights.shape == samples.safe_selected.shape == (count,)
+    assert samples.safe_by_forecast.shape == (17, count)
+    chosen = [m for m in range(count)
+              if samples.accelerations[m] == result.command.acceleration
+              and samples.curvatures[m] == result.command.curvature]
+    assert chosen and all(samples.safe_selected[m] for m in chosen)
+    assert not samples.safe_selected.all()
+
+
+def test_the_motion_models_are_those_of_the_spec():
+    # Straight-line extrapolation at τ = 0, a quarter circle with the turn rate trusted all the way.
+    motion = mm.motion_estimate(pose=mm.pose(0.0, 0.0, 0.0), speed=10.0, yaw_rate=math.pi / 2)
+    straight = mm.forecast_pose(motion, 0.0, 1.0)
+    assert (straight.x, straight.y) == pytest.approx((10.0, 0.0))
+    turned = mm.forecast_pose(motion, 1.0, 1.0)
+    radius = 10.0 / (math.pi / 2)
+    assert (turned.x, turned.y, turned.heading) == pytest.approx((radius, radius, math.pi / 2))
+    # The ego's arc: 10 m/s, no acceleration, curvature 0.1 for 1 s turns it by 1 rad.
+    end = mm.maneuver_pose(mm.pose(0.0, 0.0, 0.0), 10.0, mm.maneuver(0.0, 0.1), 1.0, 1.0, 30.0)
+    assert (end.x, end.y, end.heading) == pytest.approx((10.0 * math.sin(1.0), 10.0 * (1 - math.cos(1.0)), 1.0))
+    assert mm.max_curvature(10.0, mm.ego_limits()) == pytest.approx(0.05)
+
+
+def test_a_policy_parses_as_on_the_command_line():
+    assert str(mm.forecast_policy.parse("const:0.5")) == "const:0.5"
+    assert mm.forecast_policy.parse("adj").kind == mm.forecast_policy_kind.adjustable
+    with pytest.raises(ValueError, match="expected adj or const:SECONDS"):
+        mm.forecast_policy.parse("sometimes")

@@ -1,0 +1,119 @@
+"""The simulator from Python: a run gives what `maneuvermap run` writes, as arrays (docs/python.md)."""
+import csv
+import pathlib
+import subprocess
+
+import numpy as np
+import pytest
+
+import maneuvermap as mm
+
+
+def read_csv(path):
+    with open(path, newline="") as f:
+        return list(csv.DictReader(f))
+
+
+def test_a_run_gives_the_trajectories_and_the_map_that_maneuvermap_run_writes(cli, tmp_path):
+    subprocess.run([cli, "run", "s3-left-turn", "--out", str(tmp_path)], check=True, capture_output=True)
+    record = mm.sim.run("s3-left-turn")
+    names = [a.name for a in record.agents]
+    rows = read_csv(tmp_path / "trajectories.csv")
+    present = record.present
+    assert len(rows) == int(present.sum())
+    k_of_time = {f"{t:.6f}": k for k, t in enumerate(record.times)}
+    for row in rows:
+        k, n = k_of_time[row["t"]], names.index(row["agent"])
+        assert present[k, n]
+        for column, array in (("x", record.x), ("y", record.y), ("heading", record.heading),
+                              ("speed", record.speed), ("accel", record.acceleration),
+                              ("curvature", record.curvature)):
+            assert float(row[column]) == pytest.approx(array[k, n], abs=6e-7), (row, column)
+    map_rows = read_csv(tmp_path / "map.csv")
+    a = record.map("A")
+    assert len(map_rows) == a.mi_brake.size
+    for index, row in enumerate(map_rows):
+        step, i = divmod(index, len(a.forecast_times))
+        assert float(row["t"]) == pytest.approx(a.times[step], abs=6e-7)
+        assert float(row["tau"]) == pytest.approx(a.forecast_times[i], abs=6e-7)
+        assert float(row["mi_brake"]) == pytest.approx(a.mi_brake[step, i], abs=6e-7)
+        assert float(row["mi_accel"]) == pytest.approx(a.mi_accelerate[step, i], abs=6e-7)
+        assert (row["excluded"] == "1") == a.excluded[step, i]
+
+
+def test_the_same_scenario_and_seed_give_identical_arrays_on_one_and_two_threads():
+    first = mm.sim.run("s1-crossing", seed=5, jobs=1)
+    second = mm.sim.run("s1-crossing", seed=5, jobs=2)
+    for name in ("times", "x", "y", "heading", "speed", "acceleration", "curvature", "status"):
+        assert getattr(first, name).tobytes() == getattr(second, name).tobytes(), name
+    assert first.maps[0].mi_brake.tobytes() == second.maps[0].mi_brake.tobytes()
+
+
+def test_parameter_overrides_and_the_policy_reach_the_run():
+    loaded = mm.sim.load("s3-left-turn", set={"a_kmh": 20.0}, policy=mm.forecast_policy.parse("const:0.5"))
+    assert {p.name: p.value for p in loaded.parameters}["a_kmh"] == 20.0
+    a = loaded.scenario.planning_vehicles[0]
+    assert a.initial_speed == pytest.approx(20.0 / 3.6)
+    assert a.planner.policy.kind == mm.forecast_policy_kind.constant
+    record = mm.sim.run(loaded)
+    chosen = record.map(a.name).forecast_time
+    # The constant policy's τ, capped at the TTC where that is shorter (spec §7).
+    assert set(np.unique(chosen)) <= set(np.arange(5) * 0.125)
+    assert (chosen == 0.5).any()
+
+
+def test_a_change_of_a_planning_vehicle_through_the_loaded_scenario_changes_the_run():
+    loaded = mm.sim.load("s3-left-turn")
+    loaded.scenario.planning_vehicles[0].avoidance = False
+    record = mm.sim.run(loaded)
+    assert len(record.maps[0].times) == 0
+    assert record.metrics[0].planning_steps == 0
+
+
+def test_the_planning_input_of_a_vehicle_plans_in_python_as_the_vehicle_planned():
+    simulation = mm.sim.simulation(mm.sim.load("s3-left-turn"))
+    a = simulation.find("A")
+    compared = 0
+    while not simulation.ended() and compared < 3:
+        simulation.step()
+        if simulation.planned_now(a) and simulation.step_index % 100 == 0:
+            mine = mm.plan(simulation.planning_input(a))
+            theirs = simulation.last_plan(a).result
+            assert mine.command == theirs.command
+            assert mine.mi_brake.tobytes() == theirs.mi_brake.tobytes()
+            assert mine.mi_accelerate.tobytes() == theirs.mi_accelerate.tobytes()
+            compared += 1
+    assert compared == 3
+    assert simulation.state(a).present()
+    with pytest.raises(IndexError):
+        simulation.state(simulation.agent_count)
+
+
+def test_a_scenario_error_names_the_line_the_column_and_the_field():
+    text = "format: maneuvermap-scenario/1\nnme: typo\n"
+    with pytest.raises(mm.sim.scenario_error) as caught:
+        mm.sim.load_text(text, "typo.yaml")
+    assert (caught.value.source, caught.value.line, caught.value.field) == ("typo.yaml", 2, "nme")
+    assert "did you mean name?" in str(caught.value)
+    assert isinstance(caught.value, ValueError)
+    with pytest.raises(mm.sim.scenario_error, match="a_kmhh"):
+        mm.sim.load("s3-left-turn", set={"a_kmhh": 1.0})
+    with pytest.raises(mm.sim.scenario_error, match="missing.yaml"):
+        mm.sim.load("missing.yaml")
+
+
+def test_every_builtin_scenario_loads():
+    names = mm.sim.builtin_scenarios()
+    assert "s2-roundabout" in names
+    for name in names:
+        assert mm.sim.load(name).scenario.validation_error() is None
+
+
+def test_a_run_without_map_columns_makes_the_same_decisions_and_keeps_no_indices():
+    with_maps = mm.sim.run("s3-left-turn")
+    without = mm.sim.run("s3-left-turn", map_columns=False)
+    assert without.x.tobytes() == with_maps.x.tobytes()
+    a, b = with_maps.maps[0], without.maps[0]
+    assert b.forecast_time.tobytes() == a.forecast_time.tobytes()
+    assert b.mode.tobytes() == a.mode.tobytes()
+    assert b.mi_brake.size == 0 and b.mi_accelerate.size == 0
