@@ -10,7 +10,7 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 build=build/fuzz
 CC=clang CXX=clang++ cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DMM_BUILD_FUZZERS=ON -DMM_BUILD_TESTS=OFF -DMM_BUILD_EXAMPLES=OFF -DMM_BUILD_BENCHMARKS=OFF \
+  -DMM_BUILD_FUZZERS=ON -DMM_BUILD_TESTS=OFF -DMM_BUILD_EXAMPLES=OFF -DMM_BUILD_BENCHMARKS=OFF -DMM_BUILD_PYTHON=OFF \
   -DMM_SANITIZE=address,undefined -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link" >/dev/null
 cmake --build "$build" --target scenario_parser_fuzzer commonroad_reader_fuzzer
 mkdir -p "$build/artifacts"
