@@ -30,6 +30,9 @@ struct locked_planner {
   std::mutex turn;
 };
 
+// The planning calls copy their input while they hold the GIL and plan on the copy without it: other
+// Python threads run meanwhile, and may even change the input they passed.
+
 /// `plan` and `planner.plan` raise on invalid input instead of returning its status.
 plan_result checked(plan_result result) {
   if (!result.ok()) throw py::value_error(result.error);
@@ -114,7 +117,8 @@ void bind_motion(py::module_& m) {
       .def_readwrite("time", &observation::time, "[s]")
       .def_readwrite("pose", &observation::pose)
       .def_readwrite("speed", &observation::speed, "[m/s]");
-  py::bind_vector<std::vector<observation>>(m, "observation_list");
+  auto observations = py::bind_vector<std::vector<observation>>(m, "observation_list");
+  compared_by_elements(observations);
   py::implicitly_convertible<py::list, std::vector<observation>>();
   py::implicitly_convertible<py::tuple, std::vector<observation>>();
 
@@ -133,7 +137,8 @@ void bind_motion(py::module_& m) {
       .def_readwrite("history", &obstacle_track::history, "observations, strictly increasing times")
       .def_readwrite("motion", &obstacle_track::motion,
                      "the motion at the planning time when already estimated; None: estimated from the history");
-  py::bind_vector<std::vector<obstacle_track>>(m, "obstacle_track_list");
+  auto tracks = py::bind_vector<std::vector<obstacle_track>>(m, "obstacle_track_list");
+  compared_by_elements(tracks);
   py::implicitly_convertible<py::list, std::vector<obstacle_track>>();
   py::implicitly_convertible<py::tuple, std::vector<obstacle_track>>();
 
@@ -313,8 +318,11 @@ void bind_result(py::module_& m) {
 void bind_planning(py::module_& m) {
   m.def("validation_error", &validation_error, py::arg("input"),
         "Why the input cannot be planned on (the field, its value and what was expected), or None.");
-  m.def("plan", [](const plan_input& input) { return checked(plan(input)); }, py::arg("input"),
-        py::call_guard<py::gil_scoped_release>(),
+  m.def("plan", [](const plan_input& input) {
+          const plan_input own = input;
+          const py::gil_scoped_release release;
+          return checked(plan(own));
+        }, py::arg("input"),
         "One planning step with Maneuverability Maps (spec §3–§9), the fast path. ValueError on invalid "
         "input, with the field, its value and what was expected. Releases the GIL.");
 
@@ -325,9 +333,11 @@ void bind_planning(py::module_& m) {
                      "time resolution of the continuous-time collision proof [s]");
   m.def("plan_reference",
         [](const plan_input& input, const reference_resolution& resolution) {
-          return checked(plan_reference(input, resolution));
+          const plan_input own = input;
+          const py::gil_scoped_release release;
+          return checked(plan_reference(own, resolution));
         },
-        py::arg("input"), py::arg("resolution") = reference_resolution{}, py::call_guard<py::gil_scoped_release>(),
+        py::arg("input"), py::arg("resolution") = reference_resolution{},
         "The slow, obviously-correct reference of plan (spec §11): seconds per step.");
 
   py::class_<locked_planner>(m, "planner",
@@ -336,9 +346,11 @@ void bind_planning(py::module_& m) {
                              "tests that). Calls from several threads take turns.")
       .def(py::init<>())
       .def("plan", [](locked_planner& p, const plan_input& input) {
+            const plan_input own = input;
+            const py::gil_scoped_release release;
             const std::lock_guard<std::mutex> hold(p.turn);
-            return checked(p.kept.plan(input));
-          }, py::arg("input"), py::call_guard<py::gil_scoped_release>(), "As maneuvermap.plan. Releases the GIL.");
+            return checked(p.kept.plan(own));
+          }, py::arg("input"), "As maneuvermap.plan. Releases the GIL.");
 }
 
 }  // namespace

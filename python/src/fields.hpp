@@ -52,6 +52,19 @@ py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
   return c;
 }
 
+/// Gives a bound list type `__eq__` by its elements (a list of value types without a C++ `==`), so
+/// that values holding such lists compare by their contents; the other side may be a Python list.
+template <class Vector, class... Options>
+py::class_<Vector, Options...>& compared_by_elements(py::class_<Vector, Options...>& c) {
+  c.def("__eq__", [](py::handle self, py::handle other) {
+    if (!py::isinstance<py::iterable>(other) || py::isinstance<py::str>(other)) return false;
+    const auto as_list = [](py::handle items) { return py::list(py::reinterpret_borrow<py::object>(items)); };
+    return as_list(self).equal(as_list(other));
+  });
+  c.attr("__hash__") = py::none();
+  return c;
+}
+
 /// A copy of `values` as a one-dimensional NumPy array.
 template <class T>
 py::array_t<T> array_of(const std::vector<T>& values) {

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -125,6 +126,14 @@ run_record run_whole(const loaded_scenario& loaded, const sim::run_options& opti
   record.metrics = simulation.all_metrics();
   record.crashes.assign(simulation.crashes().begin(), simulation.crashes().end());
   return record;
+}
+
+/// A simulation of a copy of `s`, made while the GIL is held; the first decisions are made without it.
+/// (A simulation's own steps keep the GIL: other threads may read it between them, never during one.)
+std::unique_ptr<sim::simulation> start(const sim::scenario& s, const sim::run_options& options) {
+  sim::scenario own = s;
+  const py::gil_scoped_release release;
+  return std::make_unique<sim::simulation>(std::move(own), options);
 }
 
 scenario_file::load_options load_options_of(const std::optional<std::map<std::string, double>>& set,
@@ -297,18 +306,17 @@ void bind_simulation(py::module_& m) {
   py::class_<sim::simulation>(m, "simulation",
                               "A run of a scenario on a fixed time grid, step by step (docs/simulator.md).")
       .def(py::init([](const loaded_scenario& loaded, std::size_t jobs, bool map_columns, bool measure_cpu_time) {
-             return std::make_unique<sim::simulation>(loaded.scenario,
-                                                      run_options_of(jobs, map_columns, measure_cpu_time));
+             return start(loaded.scenario, run_options_of(jobs, map_columns, measure_cpu_time));
            }),
            py::arg("scenario"), py::kw_only(), py::arg("jobs") = 1, py::arg("map_columns") = true,
-           py::arg("measure_cpu_time") = false, py::call_guard<py::gil_scoped_release>(),
+           py::arg("measure_cpu_time") = false,
            "Places every agent at t = 0 and makes the first decisions. ValueError when the scenario is invalid.")
       .def(py::init([](const sim::scenario& s, std::size_t jobs, bool map_columns, bool measure_cpu_time) {
-             return std::make_unique<sim::simulation>(s, run_options_of(jobs, map_columns, measure_cpu_time));
+             return start(s, run_options_of(jobs, map_columns, measure_cpu_time));
            }),
            py::arg("scenario"), py::kw_only(), py::arg("jobs") = 1, py::arg("map_columns") = true,
-           py::arg("measure_cpu_time") = false, py::call_guard<py::gil_scoped_release>())
-      .def("step", &sim::simulation::step, py::call_guard<py::gil_scoped_release>(),
+           py::arg("measure_cpu_time") = false)
+      .def("step", &sim::simulation::step,
            "Advances one time step: motion, crashes, metrics, sensing and decisions. No-op once ended.")
       .def("ended", &sim::simulation::ended)
       .def_property_readonly("time", &sim::simulation::time, "t_k [s]")
@@ -334,8 +342,7 @@ void bind_simulation(py::module_& m) {
       })
       .def("metrics", &sim::simulation::metrics, py::arg("id"), "spec §12")
       .def("all_metrics", &sim::simulation::all_metrics)
-      .def("run", [](sim::simulation& s) { sim::run(s); }, py::call_guard<py::gil_scoped_release>(),
-           "Steps to the end.");
+      .def("run", [](sim::simulation& s) { sim::run(s); }, "Steps to the end.");
 
   py::class_<map_record>(m, "map_record",
                          "The Maneuverability Map of one planning vehicle over a run: a row per planning step.")

@@ -117,6 +117,8 @@ def test_value_types_compare_and_print_by_their_fields():
     assert mm.pose(1.0, 2.0) != mm.pose(1.0, 2.5)
     assert repr(mm.maneuver(-2.0, 0.1)) == "maneuver(acceleration=-2.0, curvature=0.1)"
     assert tuple(mm.vec2(3.0, 4.0)) == (3.0, 4.0)
+    assert crossing_scene() == crossing_scene()  # the obstacles and their histories by their contents
+    assert crossing_scene() != crossing_scene(crossing_speed=9.0)
 
 
 def test_recorded_samples_come_as_arrays_of_one_length_and_the_command_is_a_safe_sample():
