@@ -28,16 +28,6 @@ py::array_t<double> column_of(const std::vector<cr::state>& states, F value) {
   return array_of(out);
 }
 
-py::array_t<double> points_of(const std::vector<vec2>& points) {
-  py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
-  auto view = out.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    view(static_cast<py::ssize_t>(i), 0) = points[i].x;
-    view(static_cast<py::ssize_t>(i), 1) = points[i].y;
-  }
-  return out;
-}
-
 /// An (steps × forecast times) array of one index over a measurement.
 template <class F>
 py::array_t<double> map_of(const cr::measurement& m, F column) {

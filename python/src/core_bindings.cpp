@@ -253,15 +253,8 @@ void bind_result(py::module_& m) {
         return array_of(k);
       }, "κ of every sample [1/m]")
       .def_property_readonly("families", [](const sample_snapshot& s) { return s.families; })
-      .def_property_readonly("end_points", [](const sample_snapshot& s) {
-        py::array_t<double> out({static_cast<py::ssize_t>(s.end_points.size()), py::ssize_t{2}});
-        auto view = out.mutable_unchecked<2>();
-        for (std::size_t i = 0; i < s.end_points.size(); ++i) {
-          view(static_cast<py::ssize_t>(i), 0) = s.end_points[i].x;
-          view(static_cast<py::ssize_t>(i), 1) = s.end_points[i].y;
-        }
-        return out;
-      }, "the displacements, world frame [m], shape (samples, 2)")
+      .def_property_readonly("end_points", [](const sample_snapshot& s) { return points_of(s.end_points); },
+                             "the displacements, world frame [m], shape (samples, 2)")
       .def_property_readonly("area_weights", [](const sample_snapshot& s) { return array_of(s.area_weights); },
                              "[m²]; 0 on the nominal-curvature columns")
       .def_property_readonly("on_nominal_curvature",

@@ -51,4 +51,14 @@ py::array_t<bool> flags_of(const std::vector<std::uint8_t>& flags) {
   return out;
 }
 
+py::array_t<double> points_of(const std::vector<vec2>& points) {
+  py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
+  auto view = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    view(static_cast<py::ssize_t>(i), 0) = points[i].x;
+    view(static_cast<py::ssize_t>(i), 1) = points[i].y;
+  }
+  return out;
+}
+
 }  // namespace mm::python

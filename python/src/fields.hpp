@@ -74,6 +74,9 @@ py::array_t<T> array_of(const std::vector<T>& values) {
   return out;
 }
 
+/// Points [m] as a NumPy array of shape (points, 2): x and y in the columns.
+py::array_t<double> points_of(const std::vector<vec2>& points);
+
 /// A copy of 0/1 flags as a one-dimensional NumPy array of bool.
 py::array_t<bool> flags_of(const std::vector<std::uint8_t>& flags);
 

@@ -4,6 +4,7 @@
 #include <pybind11/stl_bind.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -181,6 +182,19 @@ void bind_scenarios(py::module_& m) {
       .def_readwrite("planner", &sim::planning_vehicle::planner, "its planner_config")
       .def_readwrite("avoidance", &sim::planning_vehicle::avoidance, "False: u_nom without planning")
       .def_readwrite("planning_period", &sim::planning_vehicle::planning_period, "plan every k-th step")
+      .def("path_points", [](const sim::planning_vehicle& v, double spacing) {
+        const double length = v.path.length();
+        if (!(spacing > 0.0) || !std::isfinite(spacing) || length / spacing > 1e6) {
+          throw py::value_error("spacing = " + py::repr(py::float_(spacing)).cast<std::string>() +
+                                ": expected a positive number of metres giving at most a million points");
+        }
+        std::vector<vec2> points;
+        const auto pieces = std::max<std::size_t>(static_cast<std::size_t>(std::ceil(length / spacing)), 1);
+        for (std::size_t k = 0; k <= pieces; ++k) {
+          points.push_back(v.path.at(length * static_cast<double>(k) / static_cast<double>(pieces)).position);
+        }
+        return points_of(points);
+      }, py::arg("spacing") = 0.5, "Its reference path at about `spacing` [m], shape (points, 2) [m]")
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
   py::bind_vector<std::vector<sim::planning_vehicle>>(m, "planning_vehicle_list");
   py::implicitly_convertible<py::list, std::vector<sim::planning_vehicle>>();
@@ -205,8 +219,28 @@ void bind_scenarios(py::module_& m) {
       .def_readonly("default_value", &scenario_file::parameter::default_value, "as written in the file")
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
 
+  py::class_<scenario_file::road>(m, "road", "A road drawn under the agents (not used by the simulation).")
+      .def_readonly("name", &scenario_file::road::name)
+      .def_property_readonly("centre_line", [](const scenario_file::road& r) { return points_of(r.centre_line); },
+                             "[m], shape (points, 2)")
+      .def_readonly("width", &scenario_file::road::width, "[m]")
+      .def("__repr__", [](const scenario_file::road& r) {
+        return "road(name=" + py::repr(py::str(r.name)).cast<std::string>() + ")";
+      });
+  py::class_<sim::roundabout>(m, "roundabout", "The ring of a roundabout.")
+      .def_readonly("center", &sim::roundabout::center, "C [m]")
+      .def_readonly("radius", &sim::roundabout::radius, "of the circulating lane's centre line [m]")
+      .def_readonly("connection_radius", &sim::roundabout::connection_radius,
+                    "of the arcs joining the arms to the ring [m]")
+      .def("__repr__", [](py::handle self) { return fields_repr(self); });
+
   py::class_<loaded_scenario>(m, "loaded_scenario", "A scenario file mapped onto the simulator's types.")
       .def_readwrite("scenario", &loaded_scenario::scenario)
+      .def_readonly("roads", &loaded_scenario::roads, "to draw under the agents")
+      .def_property_readonly("roundabout", [](const loaded_scenario& s) -> std::optional<sim::roundabout> {
+        if (!s.roundabout) return std::nullopt;
+        return s.roundabout->ring;
+      }, "the ring of the scenario's roundabout, or None")
       .def_readonly("parameters", &loaded_scenario::parameters)
       .def_readonly("source", &loaded_scenario::source, "file name or builtin:NAME")
       .def("__repr__", [](const loaded_scenario& s) {

@@ -117,3 +117,25 @@ def test_a_run_without_map_columns_makes_the_same_decisions_and_keeps_no_indices
     assert b.forecast_time.tobytes() == a.forecast_time.tobytes()
     assert b.mode.tobytes() == a.mode.tobytes()
     assert b.mi_brake.size == 0 and b.mi_accelerate.size == 0
+
+
+def test_the_scene_geometry_comes_with_the_loaded_scenario():
+    roundabout = mm.sim.load("s2-roundabout")
+    ring = roundabout.roundabout
+    assert ring.radius > 0
+    a = roundabout.scenario.planning_vehicles[0]
+    path = a.path_points(spacing=1.0)
+    assert path.shape[1] == 2 and len(path) > 10
+    steps = np.hypot(*np.diff(path, axis=0).T)
+    assert steps.max() <= 1.0 + 1e-9
+    # The path reaches the ring: some point lies on the circulating lane's centre line.
+    distance_to_centre = np.hypot(path[:, 0] - ring.center.x, path[:, 1] - ring.center.y)
+    assert np.min(np.abs(distance_to_centre - ring.radius)) < 0.5
+    # A run starts where the path says.
+    record = mm.sim.run(roundabout)
+    first = np.argmax(record.present[:, 0])
+    start = np.array([record.x[first, 0], record.y[first, 0]])
+    assert np.min(np.hypot(*(path - start).T)) < 1.0
+    assert mm.sim.load("s3-left-turn").roundabout is None
+    with pytest.raises(ValueError, match="spacing = 0.0"):
+        a.path_points(spacing=0.0)
