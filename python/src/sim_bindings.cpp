@@ -254,9 +254,10 @@ void bind_scenarios(py::module_& m) {
     return names;
   }, "The names of the built-in scenarios.");
   m.def("load",
-        [](const std::string& file_or_builtin, const std::optional<std::map<std::string, double>>& set,
+        [](const py::object& file_or_builtin, const std::optional<std::map<std::string, double>>& set,
            const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed) {
-          return scenario_file::load(file_or_builtin, load_options_of(set, policy, seed));
+          const std::string name = py::str(py::module_::import("os").attr("fspath")(file_or_builtin));
+          return scenario_file::load(name, load_options_of(set, policy, seed));
         },
         py::arg("file_or_builtin"), py::kw_only(), py::arg("set") = py::none(), py::arg("policy") = py::none(),
         py::arg("seed") = py::none(),
@@ -459,14 +460,21 @@ void bind_simulation(py::module_& m) {
            const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, std::size_t jobs,
            bool map_columns, bool measure_cpu_time) {
           loaded_scenario loaded;
-          if (py::isinstance<loaded_scenario>(what)) {
-            if (set || policy || seed) {
-              throw py::value_error("set, policy and seed apply when loading: pass a name or a file to run()");
-            }
+          const bool is_loaded = py::isinstance<loaded_scenario>(what);
+          if ((is_loaded || py::isinstance<sim::scenario>(what)) && (set || policy || seed)) {
+            throw py::value_error("set, policy and seed apply when loading: pass a name or a file to run()");
+          }
+          if (is_loaded) {
             loaded = what.cast<loaded_scenario>();
-          } else {
-            const std::string name = py::str(what);
+          } else if (py::isinstance<sim::scenario>(what)) {
+            loaded.scenario = what.cast<sim::scenario>();
+            loaded.source = "<scenario>";
+          } else if (py::isinstance<py::str>(what) || py::hasattr(what, "__fspath__")) {
+            const std::string name = py::str(py::module_::import("os").attr("fspath")(what));
             loaded = scenario_file::load(name, load_options_of(set, policy, seed));
+          } else {
+            throw py::type_error("run(): expected a built-in name, a scenario file, a loaded_scenario or a scenario, "
+                                 "got " + py::repr(what).cast<std::string>());
           }
           const sim::run_options options = run_options_of(jobs, map_columns, measure_cpu_time);
           const py::gil_scoped_release release;
@@ -475,7 +483,7 @@ void bind_simulation(py::module_& m) {
         py::arg("scenario"), py::kw_only(), py::arg("set") = py::none(), py::arg("policy") = py::none(),
         py::arg("seed") = py::none(), py::arg("jobs") = 1, py::arg("map_columns") = true,
         py::arg("measure_cpu_time") = false,
-        "Runs a scenario (a built-in name, a file, or a loaded_scenario) to its end and returns its "
+        "Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its "
         "run_record: what `maneuvermap run` writes, as arrays. Releases the GIL.");
 }
 

@@ -139,3 +139,18 @@ def test_the_scene_geometry_comes_with_the_loaded_scenario():
     assert mm.sim.load("s3-left-turn").roundabout is None
     with pytest.raises(ValueError, match="spacing = 0.0"):
         a.path_points(spacing=0.0)
+
+
+def test_run_takes_a_name_a_path_a_loaded_scenario_or_a_scenario_and_refuses_anything_else(source_dir):
+    by_name = mm.sim.run("s1-crossing")
+    by_path = mm.sim.run(source_dir / "scenarios" / "s1-crossing.yaml")
+    assert mm.sim.load(source_dir / "scenarios" / "s1-crossing.yaml").source.endswith("s1-crossing.yaml")
+    loaded = mm.sim.load("s1-crossing")
+    by_loaded = mm.sim.run(loaded)
+    by_scenario = mm.sim.run(loaded.scenario)
+    for other in (by_path, by_loaded, by_scenario):
+        assert other.x.tobytes() == by_name.x.tobytes()
+    with pytest.raises(TypeError, match="expected a built-in name"):
+        mm.sim.run(42)
+    with pytest.raises(ValueError, match="apply when loading"):
+        mm.sim.run(loaded, seed=3)
