@@ -1,0 +1,57 @@
+#include "recording.hpp"
+
+#include <algorithm>
+
+#include "mm/geometry.hpp"
+
+namespace mm::commonroad::detail {
+
+const obstacle* find_obstacle(const scenario& s, std::uint32_t id) {
+  for (const obstacle& o : s.obstacles) {
+    if (o.id == id) return &o;
+  }
+  return nullptr;
+}
+
+bool is_pedestrian(const obstacle& o) { return o.type == "pedestrian"; }
+
+bool can_be_measured(const obstacle& o) {
+  return o.role == obstacle_role::dynamic_obstacle && !is_pedestrian(o) && !o.states.empty();
+}
+
+double step_time(const scenario& s, std::int64_t step) { return static_cast<double>(step) * s.time_step; }
+
+const state* state_at(const obstacle& o, std::int64_t step) {
+  if (o.states.empty()) return nullptr;
+  const std::int64_t first = o.states.front().step;
+  if (step < first) return nullptr;
+  // Unsigned: no overflow whatever steps a file gives.
+  const std::uint64_t index = static_cast<std::uint64_t>(step) - static_cast<std::uint64_t>(first);
+  if (index >= o.states.size()) return nullptr;
+  return &o.states[static_cast<std::size_t>(index)];
+}
+
+std::string list_ids(const std::vector<std::uint32_t>& ids) {
+  std::string text;
+  for (std::size_t i = 0; i < ids.size() && i < 20; ++i) text += (i ? ", " : "") + std::to_string(ids[i]);
+  if (ids.size() > 20) text += ", …";
+  return text.empty() ? "none" : text;
+}
+
+const obstacle& measured(const scenario& s, std::uint32_t agent) {
+  const obstacle* o = find_obstacle(s, agent);
+  const auto error = [&](const std::string& why) {
+    return measure_error("road user " + std::to_string(agent) + ": " + why +
+                         "; the road users that can be measured are: " + list_ids(measurable_road_users(s)));
+  };
+  if (o == nullptr) throw error("no obstacle has this id");
+  if (o->role == obstacle_role::static_obstacle) throw error("a static obstacle (" + o->type + ")");
+  if (is_pedestrian(*o)) throw error("a pedestrian: the planner's ego is a vehicle that steers along arcs (spec §3)");
+  return *o;
+}
+
+observation observed(const scenario& s, const state& x) {
+  return {step_time(s, x.step), pose{x.position, wrap_angle(x.orientation)}, std::max(x.velocity, 0.0)};
+}
+
+}  // namespace mm::commonroad::detail

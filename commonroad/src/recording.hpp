@@ -1,0 +1,38 @@
+#pragma once
+
+// What measuring and replaying a recording share: finding a road user, its state at a step, the
+// check that it can be the planner's ego (internal to mm::commonroad).
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mm/commonroad/measure.hpp"
+#include "mm/commonroad/scenario.hpp"
+#include "mm/forecast.hpp"
+
+namespace mm::commonroad::detail {
+
+const obstacle* find_obstacle(const scenario& s, std::uint32_t id);
+
+bool is_pedestrian(const obstacle& o);
+
+/// A road user the planner can take as its ego: a recorded vehicle (`measurable_road_users`).
+bool can_be_measured(const obstacle& o);
+
+/// t_k = k·Δt [s].
+double step_time(const scenario& s, std::int64_t step);
+
+/// The state of `o` at `step`, or null when it is not recorded then (states are at consecutive steps).
+const state* state_at(const obstacle& o, std::int64_t step);
+
+/// At most 20 ids, comma-separated ("none" for none).
+std::string list_ids(const std::vector<std::uint32_t>& ids);
+
+/// The road user `agent` as the planner's ego, or `measure_error` saying why it cannot be.
+const obstacle& measured(const scenario& s, std::uint32_t agent);
+
+/// A recorded state as an observation: its time, its pose (heading wrapped) and max(v, 0).
+observation observed(const scenario& s, const state& x);
+
+}  // namespace mm::commonroad::detail
