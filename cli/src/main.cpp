@@ -15,6 +15,7 @@
 
 #include "mm/cli/commands.hpp"
 #include "mm/cli/measure.hpp"
+#include "mm/cli/replay.hpp"
 #include "mm/cli/plot.hpp"
 #include "mm/cli/sweep.hpp"
 #include "mm/commonroad/reader.hpp"
@@ -239,6 +240,46 @@ int measure_command(const measure_command_options& o) {
   return exit_ok;
 }
 
+struct replay_command_options {
+  std::string file;
+  std::optional<std::uint32_t> agent;
+  std::string policy;
+  std::optional<double> desired_speed_kmh;
+  bool no_avoidance = false;
+  std::string out;
+  bool plots = false;
+};
+
+int replay_command(const replay_command_options& o) {
+  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
+  mm::commonroad::replay_options options;
+  options.agent = o.agent ? *o.agent : mm::cli::default_replay_agent(recording);
+  if (!o.policy.empty()) {
+    const auto policy = sf::parse_policy(o.policy);
+    if (!policy) throw mm::cli::input_error("--policy " + o.policy + ": expected adj or const:SECONDS, e.g. const:1.0");
+    options.config.policy = *policy;
+  }
+  if (o.desired_speed_kmh) options.desired_speed = *o.desired_speed_kmh / 3.6;
+  options.avoidance = !o.no_avoidance;
+  const sf::loaded_scenario loaded = mm::cli::replay_loaded(recording, options, o.file);
+  const std::string name = std::filesystem::path(o.file).stem().string();
+  mm::cli::run_settings settings;
+  settings.out_dir = o.out.empty() ? std::filesystem::path("out") / (name + "-replay") : std::filesystem::path(o.out);
+  settings.jobs = 1;
+  settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
+  const mm::cli::run_outcome outcome = mm::cli::run_scenario(loaded, settings);
+  const mm::sim::planning_vehicle& ego = loaded.scenario.planning_vehicles.front();
+  std::cout << fmt::format("{}: road user {} driven by the planner ({}), desired speed {} km/h, policy {}; "
+                           "the others replayed; ended at t = {} s\n",
+                           name, options.agent, options.avoidance ? "avoiding" : "without avoidance",
+                           mm::cli::fixed(ego.desired_speed * 3.6, 1), sf::policy_name(options.config.policy),
+                           mm::cli::fixed(outcome.end_time, 2));
+  std::cout << mm::cli::metrics_table(outcome.metrics, false);
+  std::cout << "written to " << settings.out_dir.string() << "/\n";
+  if (o.plots) plot_into(settings.out_dir);
+  return exit_ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -321,6 +362,27 @@ int main(int argc, char** argv) {
       ->type_name("N");
   measure->add_flag("--plots", measure_options.plots, "Then draw the figures into the output directory (maneuvermap plot)");
 
+  replay_command_options replay_options;
+  CLI::App* replay = app.add_subcommand(
+      "replay", "Drive one road user of a CommonRoad recording with the planner, the others replayed; write a run's files");
+  replay->add_option("FILE", replay_options.file, "CommonRoad scenario file (XML, version 2018b or 2020a)")
+      ->required()
+      ->type_name("FILE.xml");
+  replay->add_option("--agent", replay_options.agent,
+                     "The road user to drive (default: the recorded ego of the file's planning problem)")
+      ->check(CLI::PositiveNumber)
+      ->type_name("ID");
+  replay->add_option("--policy", replay_options.policy, "Forecast policy: adj (default) or const:SECONDS")
+      ->type_name("adj|const:SECONDS");
+  replay->add_option("--desired-speed", replay_options.desired_speed_kmh,
+                     "Its desired speed in km/h (default: its mean recorded speed)")
+      ->check(CLI::Range(0.0, 360.0))
+      ->type_name("KMH");
+  replay->add_flag("--no-avoidance", replay_options.no_avoidance,
+                   "Follow the recorded path without planning (the baseline)");
+  replay->add_option("--out", replay_options.out, "Output directory (default out/<file name>-replay)")->type_name("DIR");
+  replay->add_flag("--plots", replay_options.plots, "Then draw the run's figures into its output directory");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -337,6 +399,7 @@ int main(int argc, char** argv) {
     if (plot->parsed()) return plot_command(plot_target, plot_out);
     if (snapshot->parsed()) return snapshot_command(snapshot_options, snapshot_time, snapshot_agent, snapshot_tau, snapshot_out);
     if (measure->parsed()) return measure_command(measure_options);
+    if (replay->parsed()) return replay_command(replay_options);
   } catch (const sf::scenario_error& e) {
     std::cerr << "maneuvermap: " << e.what() << "\n";
     return exit_bad_input;

@@ -13,6 +13,7 @@
 #include "fields.hpp"
 #include "mm/commonroad/measure.hpp"
 #include "mm/commonroad/reader.hpp"
+#include "mm/commonroad/replay.hpp"
 
 namespace mm::python {
 
@@ -189,6 +190,25 @@ void bind_commonroad(py::module_& m) {
         py::arg("scenario"), py::arg("agent"), py::arg("step"), py::kw_only(), py::arg("config") = py::none(),
         py::arg("policy") = py::none(), py::arg("limits") = py::none(),
         "(plan_input, obstacle ids): the planner's input for road user `agent` at recorded step `step`.");
+  m.def("replay_scenario",
+        [](const cr::scenario& s, std::uint32_t agent, const std::optional<planner_config>& config,
+           const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits,
+           const std::optional<double>& desired_speed, bool avoidance) {
+          cr::replay_options options;
+          const cr::measure_options measured = options_of(agent, config, policy, limits);
+          options.agent = agent;
+          options.config = measured.config;
+          options.limits = measured.limits;
+          options.desired_speed = desired_speed;
+          options.avoidance = avoidance;
+          return cr::replay_scenario(s, options);
+        },
+        py::arg("scenario"), py::arg("agent"), py::kw_only(), py::arg("config") = py::none(),
+        py::arg("policy") = py::none(), py::arg("limits") = py::none(), py::arg("desired_speed") = py::none(),
+        py::arg("avoidance") = true,
+        "The recording as a simulation scenario with road user `agent` driven by the planner along its recorded "
+        "path and the others replayed (docs/commonroad.md); run it with maneuvermap.sim.run. measure_error when "
+        "it cannot be replayed.");
   m.def("measurable_road_users", &cr::measurable_road_users, py::arg("scenario"),
         "The dynamic obstacles that are not pedestrians, in file order.");
   m.def("recorded_ego", &cr::recorded_ego, py::arg("scenario"), py::arg("problem"),

@@ -1,0 +1,42 @@
+#pragma once
+
+#include <cstdint>
+#include <optional>
+
+#include "mm/commonroad/scenario.hpp"
+#include "mm/maneuver.hpp"
+#include "mm/planner_config.hpp"
+#include "mm/sim/scenario.hpp"
+
+namespace mm::commonroad {
+
+/// How a recording is replayed with one of its road users driven by the planner (docs/commonroad.md).
+struct replay_options {
+  std::uint32_t agent = 0;  ///< the road user the planner drives: a vehicle with a rectangular footprint
+  planner_config config;    ///< its planner (spec §4–§9)
+  /// Its limits (spec §3); the speed cap is raised to its largest recorded speed where that is higher.
+  ego_limits limits;
+  /// v_des [m/s] of its speed keeping; none: its mean recorded speed.
+  std::optional<double> desired_speed;
+  /// false: it follows its recorded path at its desired speed without planning (the baseline).
+  bool avoidance = true;
+};
+
+/// The recording as a simulation (closed loop for one road user, the others replayed):
+/// - the road user `options.agent` becomes a planning vehicle whose reference path is the polyline
+///   through its recorded positions; it enters at its first recorded step with its recorded speed
+///   and then follows that path with the planner, at its desired speed;
+/// - every other road user replays its recording exactly at the recorded steps (linearly between
+///   them, along the polyline of its positions, at the speed that covers each piece in one step),
+///   entering at its first step and leaving after its last; a rectangle becomes a scripted vehicle,
+///   a disc a pedestrian; one that never moves (or has one state) a static obstacle;
+/// - static obstacles keep their footprint (a disc as the 16-gon around it).
+/// The run lasts until the last recorded step, at the simulator's 100 Hz. The replayed road users do
+/// not react to the planned one. Throws `measure_error` naming the road user that cannot be replayed
+/// (not a vehicle, a footprint that is neither a rectangle nor a disc) and why.
+sim::scenario replay_scenario(const scenario& s, const replay_options& options);
+
+/// The name a road user gets in a replay: its type and id, e.g. `car-34`.
+std::string replay_name(const obstacle& o);
+
+}  // namespace mm::commonroad

@@ -1,0 +1,150 @@
+#include "mm/commonroad/replay.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "mm/commonroad/measure.hpp"
+#include "mm/footprint.hpp"
+#include "mm/geometry.hpp"
+#include "recording.hpp"
+
+namespace mm::commonroad {
+
+using namespace detail;
+
+namespace {
+
+/// Positions closer than this to the previous kept one are the same path point [m].
+constexpr double same_point = 1e-3;
+
+/// The path along a road user's recorded positions and how far along it each state is [m].
+struct recorded_path {
+  std::vector<vec2> points;
+  std::vector<double> arc_length;  ///< per state
+};
+
+recorded_path path_of(const obstacle& o) {
+  recorded_path p;
+  double travelled = 0.0;
+  for (const state& x : o.states) {
+    if (p.points.empty()) {
+      p.points.push_back(x.position);
+    } else if (const double d = norm(x.position - p.points.back()); d >= same_point) {
+      travelled += d;
+      p.points.push_back(x.position);
+    }
+    p.arc_length.push_back(travelled);
+  }
+  return p;
+}
+
+/// Speed held over each recorded step so that the road user is at its recorded arc length at every
+/// recorded step: the knots (τ_i, v_i) and (τ_{i+1} − ε, v_i) with v_i = (s_{i+1} − s_i)/Δt, then a
+/// speed of at least 1 m/s after its last state, so that it leaves the scene at once.
+sim::speed_profile profile_of(const recorded_path& p, double dt) {
+  sim::speed_profile profile;
+  const double epsilon = dt * 1e-6;
+  const std::size_t n = p.arc_length.size();
+  double last = 0.0;
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    const double tau = dt * static_cast<double>(i);
+    last = (p.arc_length[i + 1] - p.arc_length[i]) / dt;
+    profile.knots.push_back({tau, last});
+    profile.knots.push_back({tau + dt - epsilon, last});
+  }
+  profile.knots.push_back({dt * static_cast<double>(n - 1), std::max(last, 1.0)});
+  return profile;
+}
+
+/// The world polygon of a footprint at a recorded state: a rectangle's or polygon's corners, a
+/// disc's circumscribed 16-gon.
+std::vector<vec2> world_polygon(const footprint& shape, const state& x) {
+  const pose where{x.position, x.orientation};
+  if (const auto* d = std::get_if<disc>(&shape)) {
+    std::vector<vec2> corners;
+    constexpr int sides = 16;
+    const double r = d->radius / std::cos(std::numbers::pi / sides);
+    for (int k = 0; k < sides; ++k) {
+      const double a = 2.0 * std::numbers::pi * k / sides;
+      corners.push_back({x.position.x + r * std::cos(a), x.position.y + r * std::sin(a)});
+    }
+    return corners;
+  }
+  const placed_footprint placed = place(shape, where);
+  return {placed.vertices.begin(), placed.vertices.begin() + static_cast<std::ptrdiff_t>(placed.vertex_count)};
+}
+
+measure_error cannot_replay(const obstacle& o, const std::string& why) {
+  return measure_error("road user " + std::to_string(o.id) + " (" + o.type + "): " + why);
+}
+
+}  // namespace
+
+std::string replay_name(const obstacle& o) { return (o.type.empty() ? "obstacle" : o.type) + "-" + std::to_string(o.id); }
+
+sim::scenario replay_scenario(const scenario& s, const replay_options& options) {
+  const obstacle& agent = measured(s, options.agent);
+  sim::scenario out;
+  out.name = s.benchmark_id.empty() ? "commonroad" : s.benchmark_id;
+  out.description = "CommonRoad " + s.version + " recording " + s.benchmark_id + ", road user " +
+                    std::to_string(agent.id) + " driven by the planner";
+  out.time_step = 0.01;
+  std::int64_t last_step = 0;
+  for (const obstacle& o : s.obstacles) {
+    if (!o.states.empty()) last_step = std::max(last_step, o.states.back().step);
+  }
+  out.duration = std::max(step_time(s, last_step), out.time_step);
+
+  const auto* body = std::get_if<rectangle>(&agent.shape);
+  if (body == nullptr) throw cannot_replay(agent, "the planner drives a rectangular footprint; this one is not");
+  const recorded_path route = path_of(agent);
+  if (route.points.size() < 2) throw cannot_replay(agent, "it does not move, so it has no path to follow");
+  sim::planning_vehicle ego;
+  ego.name = replay_name(agent);
+  ego.path = sim::path::polyline(route.points);
+  ego.start_time = step_time(s, agent.states.front().step);
+  ego.initial_speed = std::max(agent.states.front().velocity, 0.0);
+  double sum = 0.0;
+  double largest = 0.0;
+  for (const state& x : agent.states) {
+    sum += std::max(x.velocity, 0.0);
+    largest = std::max(largest, x.velocity);
+  }
+  ego.desired_speed = options.desired_speed.value_or(sum / static_cast<double>(agent.states.size()));
+  ego.shape = *body;
+  ego.limits = options.limits;
+  ego.limits.speed_cap = std::max({ego.limits.speed_cap, largest, ego.desired_speed});
+  ego.planner = options.config;
+  ego.avoidance = options.avoidance;
+  out.planning_vehicles.push_back(std::move(ego));
+
+  for (const obstacle& o : s.obstacles) {
+    if (o.id == agent.id || o.states.empty()) continue;
+    const recorded_path p = path_of(o);
+    if (o.role == obstacle_role::static_obstacle || p.points.size() < 2) {
+      out.static_obstacles.push_back({replay_name(o), world_polygon(o.shape, o.states.front())});
+      continue;
+    }
+    sim::scripted_motion motion;
+    motion.path = sim::path::polyline(p.points);
+    motion.start_time = step_time(s, o.states.front().step);
+    motion.speed = profile_of(p, s.time_step);
+    if (const auto* r = std::get_if<rectangle>(&o.shape)) {
+      out.scripted_vehicles.push_back({replay_name(o), std::move(motion), *r});
+    } else if (const auto* d = std::get_if<disc>(&o.shape)) {
+      out.pedestrians.push_back({replay_name(o), std::move(motion), d->radius});
+    } else {
+      throw cannot_replay(o, "a moving polygon (an offset shape in the file): the simulator moves rectangles and discs");
+    }
+  }
+  if (const auto problem = sim::validation_error(out)) {
+    throw measure_error("the replay of road user " + std::to_string(agent.id) + " is not a valid simulation: " + *problem);
+  }
+  return out;
+}
+
+}  // namespace mm::commonroad

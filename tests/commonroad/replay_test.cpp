@@ -1,0 +1,213 @@
+// Replaying a recording with one road user driven by the planner: the others are where they were
+// recorded, the driven one starts as recorded and follows its path, and the loop is closed (it brakes
+// for what it would have hit).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <string>
+
+#include "mm/commonroad/measure.hpp"
+#include "mm/commonroad/replay.hpp"
+#include "mm/sim/simulation.hpp"
+
+namespace {
+
+using namespace mm::commonroad;
+
+state at(std::int64_t step, mm::vec2 position, double heading, double speed) {
+  return {step, position, heading, speed, std::nullopt, std::nullopt};
+}
+
+/// A road user recorded at steps first.. with the given speeds [m/s] (one per step) and a constant
+/// yaw rate `omega` [rad/s], from `start`, at 0.1 s steps: it moves v_k·Δt along its heading.
+obstacle recorded(std::uint32_t id, const std::string& type, mm::pose start, const std::vector<double>& speeds,
+                  double omega, std::int64_t first, mm::footprint shape = mm::rectangle{4.5, 1.8}) {
+  obstacle o;
+  o.id = id;
+  o.type = type;
+  o.shape = shape;
+  mm::pose p = start;
+  for (std::size_t k = 0; k < speeds.size(); ++k) {
+    o.states.push_back(at(first + static_cast<std::int64_t>(k), p.position, p.heading, speeds[k]));
+    p.position = {p.position.x + speeds[k] * 0.1 * std::cos(p.heading), p.position.y + speeds[k] * 0.1 * std::sin(p.heading)};
+    p.heading += omega * 0.1;
+  }
+  return o;
+}
+
+std::vector<double> constant(double v, std::size_t n) { return std::vector<double>(n, v); }
+
+/// Car 1 drives east at 10 m/s (steps 0–40); car 2 turns left while it slows from 8 to 2 m/s
+/// (steps 5–30); pedestrian 3 walks, stops, walks (steps 0–40); car 4 stands (never moves).
+scenario traffic() {
+  scenario s;
+  s.benchmark_id = "TEST_Replay-1";
+  s.version = "2020a";
+  s.time_step = 0.1;
+  s.obstacles.push_back(recorded(1, "car", {{0, 0}, 0.0}, constant(10.0, 41), 0.0, 0));
+  std::vector<double> slowing;
+  for (int k = 0; k <= 25; ++k) slowing.push_back(8.0 - 0.24 * k);
+  s.obstacles.push_back(recorded(2, "car", {{40, -30}, std::numbers::pi / 2}, slowing, 0.3, 5));
+  std::vector<double> walking = constant(1.4, 41);
+  for (std::size_t k = 15; k < 25; ++k) walking[k] = 0.0;
+  s.obstacles.push_back(recorded(3, "pedestrian", {{-30, 20}, -0.5}, walking, 0.0, 0, mm::disc{0.3}));
+  s.obstacles.push_back(recorded(4, "car", {{-50, -10}, 1.0}, constant(0.0, 41), 0.0, 0));
+  s.planning_problems.push_back({100, at(0, {0, 0}, 0.0, 10.0)});
+  return s;
+}
+
+/// Runs `sc` and calls `check(sim)` at every step.
+template <class F>
+void run(const mm::sim::scenario& sc, F check) {
+  mm::sim::simulation sim(sc);
+  check(sim);
+  while (!sim.ended()) {
+    sim.step();
+    check(sim);
+  }
+}
+
+TEST(replay, every_replayed_road_user_is_where_it_was_recorded_at_every_recorded_step_and_absent_outside_them) {
+  const scenario s = traffic();
+  replay_options options;
+  options.agent = 1;
+  options.avoidance = false;
+  const mm::sim::scenario sc = replay_scenario(s, options);
+  ASSERT_EQ(sc.planning_vehicles.size(), 1U);
+  ASSERT_EQ(sc.scripted_vehicles.size(), 1U);
+  ASSERT_EQ(sc.pedestrians.size(), 1U);
+  ASSERT_EQ(sc.static_obstacles.size(), 1U);  // car 4 never moves
+  EXPECT_EQ(sc.scripted_vehicles[0].name, "car-2");
+  EXPECT_EQ(sc.static_obstacles[0].name, "car-4");
+  EXPECT_DOUBLE_EQ(sc.duration, 4.0);
+  std::size_t checked = 0;
+  run(sc, [&](const mm::sim::simulation& sim) {
+    const long hundredths = std::lround(sim.time() * 100.0);
+    for (const char* name : {"car-2", "pedestrian-3"}) {
+      const obstacle& o = s.obstacles[name[0] == 'c' ? 1 : 2];
+      const mm::sim::agent_state& a = sim.state(*sim.find(name));
+      const std::int64_t first = o.states.front().step;
+      const std::int64_t last = o.states.back().step;
+      if (hundredths < first * 10 || hundredths > last * 10) {
+        EXPECT_FALSE(a.present()) << name << " at " << sim.time();
+      }
+      if (hundredths % 10 != 0 || hundredths < first * 10 || hundredths > last * 10) continue;
+      const state& x = o.states[static_cast<std::size_t>(hundredths / 10 - first)];
+      ASSERT_TRUE(a.present()) << name << " at " << sim.time();
+      EXPECT_NEAR(a.pose.position.x, x.position.x, 1e-6) << name << " at " << sim.time();
+      EXPECT_NEAR(a.pose.position.y, x.position.y, 1e-6) << name << " at " << sim.time();
+      ++checked;
+    }
+  });
+  EXPECT_EQ(checked, 26U + 41U);
+}
+
+TEST(replay, the_driven_road_user_starts_as_recorded_and_without_avoidance_keeps_to_its_recorded_path) {
+  scenario s = traffic();
+  s.obstacles[0] = recorded(1, "car", {{0, 0}, 0.2}, constant(10.0, 41), 0.1, 3);  // a left curve, from step 3
+  replay_options options;
+  options.agent = 1;
+  options.avoidance = false;
+  const mm::sim::scenario sc = replay_scenario(s, options);
+  const mm::sim::planning_vehicle& ego = sc.planning_vehicles.front();
+  EXPECT_EQ(ego.name, "car-1");
+  EXPECT_DOUBLE_EQ(ego.start_time, 0.30000000000000004);
+  EXPECT_DOUBLE_EQ(ego.initial_speed, 10.0);
+  EXPECT_DOUBLE_EQ(ego.desired_speed, 10.0);  // its mean recorded speed
+  EXPECT_FALSE(ego.avoidance);
+  bool started = false;
+  double largest_offset = 0.0;
+  run(sc, [&](const mm::sim::simulation& sim) {
+    const mm::sim::agent_state& a = sim.state(0);
+    if (!a.present()) return;
+    if (!started) {
+      started = true;
+      EXPECT_NEAR(sim.time(), 0.3, 1e-9);
+      EXPECT_NEAR(a.pose.position.x, 0.0, 1e-9);
+      EXPECT_NEAR(a.pose.position.y, 0.0, 1e-9);
+      EXPECT_DOUBLE_EQ(a.speed, 10.0);
+    }
+    largest_offset = std::max(largest_offset, std::abs(a.lateral_offset));
+  });
+  EXPECT_TRUE(started);
+  EXPECT_LT(largest_offset, 0.1) << "pure pursuit along the polyline of its recorded positions";
+}
+
+TEST(replay, the_loop_is_closed_the_planner_avoids_the_car_the_recorded_driver_ran_into) {
+  // The recording: car 1 drives at 10 m/s into car 2, which stands 30 m ahead from step 0.
+  scenario s;
+  s.version = "2020a";
+  s.time_step = 0.1;
+  s.obstacles.push_back(recorded(1, "car", {{0, 0}, 0.0}, constant(10.0, 51), 0.0, 0));
+  obstacle parked;
+  parked.id = 2;
+  parked.role = obstacle_role::static_obstacle;
+  parked.type = "parkedVehicle";
+  parked.shape = mm::rectangle{4.5, 1.8};
+  parked.states.push_back(at(0, {30, 0}, 0.0, 0.0));
+  s.obstacles.push_back(parked);
+  replay_options options;
+  options.agent = 1;
+  options.avoidance = false;
+  {
+    mm::sim::simulation sim(replay_scenario(s, options));
+    mm::sim::run(sim);
+    EXPECT_TRUE(sim.metrics(0).crash) << "without the planner it drives into the parked car, as recorded";
+  }
+  options.avoidance = true;
+  mm::sim::simulation sim(replay_scenario(s, options));
+  mm::sim::run(sim);
+  const mm::sim::run_metrics m = sim.metrics(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_GT(m.planning_steps, 0U);
+  EXPECT_GT(m.time_in_brake_s + m.time_in_accel_s, 0.0) << "it left nominal planning to avoid it";
+}
+
+TEST(replay, a_road_user_that_cannot_be_driven_or_moved_is_refused_with_its_id_and_why) {
+  const scenario s = traffic();
+  replay_options options;
+  options.agent = 3;
+  EXPECT_THROW(
+      {
+        try {
+          replay_scenario(s, options);
+        } catch (const measure_error& e) {
+          EXPECT_NE(std::string(e.what()).find("road user 3: a pedestrian"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      measure_error);
+  options.agent = 4;
+  EXPECT_THROW(
+      {
+        try {
+          replay_scenario(s, options);
+        } catch (const measure_error& e) {
+          EXPECT_NE(std::string(e.what()).find("road user 4 (car): it does not move"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      measure_error);
+  scenario polygon = traffic();
+  polygon.obstacles[1].shape = mm::convex_polygon{{{-2, -1}, {3, -1}, {3, 1}, {-2, 1}}};
+  options.agent = 1;
+  EXPECT_THROW(
+      {
+        try {
+          replay_scenario(polygon, options);
+        } catch (const measure_error& e) {
+          EXPECT_NE(std::string(e.what()).find("road user 2 (car): a moving polygon"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      measure_error);
+  scenario round = traffic();
+  round.obstacles[0].shape = mm::disc{1.0};
+  EXPECT_THROW(replay_scenario(round, options), measure_error);
+  options.agent = 99;
+  EXPECT_THROW(replay_scenario(s, options), measure_error);
+}
+
+}  // namespace
