@@ -269,11 +269,12 @@ int replay_command(const replay_command_options& o) {
   settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
   const mm::cli::run_outcome outcome = mm::cli::run_scenario(loaded, settings);
   const mm::sim::planning_vehicle& ego = loaded.scenario.planning_vehicles.front();
-  std::cout << fmt::format("{}: road user {} driven by the planner ({}), desired speed {} km/h, policy {}; "
+  const std::string desired = ego.desired_speed_profile ? std::string("its recorded speeds")
+                                                         : mm::cli::fixed(ego.desired_speed * 3.6, 1) + " km/h";
+  std::cout << fmt::format("{}: road user {} driven by the planner ({}), desired speed {}, policy {}; "
                            "the others replayed; ended at t = {} s\n",
-                           name, options.agent, options.avoidance ? "avoiding" : "without avoidance",
-                           mm::cli::fixed(ego.desired_speed * 3.6, 1), sf::policy_name(options.config.policy),
-                           mm::cli::fixed(outcome.end_time, 2));
+                           name, options.agent, options.avoidance ? "avoiding" : "without avoidance", desired,
+                           sf::policy_name(options.config.policy), mm::cli::fixed(outcome.end_time, 2));
   std::cout << mm::cli::metrics_table(outcome.metrics, false);
   std::cout << "written to " << settings.out_dir.string() << "/\n";
   if (o.plots) plot_into(settings.out_dir);
@@ -375,7 +376,7 @@ int main(int argc, char** argv) {
   replay->add_option("--policy", replay_options.policy, "Forecast policy: adj (default) or const:SECONDS")
       ->type_name("adj|const:SECONDS");
   replay->add_option("--desired-speed", replay_options.desired_speed_kmh,
-                     "Its desired speed in km/h (default: its mean recorded speed)")
+                     "Its desired speed in km/h (default: its recorded speed at each moment)")
       ->check(CLI::Range(0.0, 360.0))
       ->type_name("KMH");
   replay->add_flag("--no-avoidance", replay_options.no_avoidance,

@@ -108,13 +108,19 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
   ego.path = sim::path::polyline(route.points);
   ego.start_time = step_time(s, agent.states.front().step);
   ego.initial_speed = std::max(agent.states.front().velocity, 0.0);
-  double sum = 0.0;
   double largest = 0.0;
-  for (const state& x : agent.states) {
-    sum += std::max(x.velocity, 0.0);
-    largest = std::max(largest, x.velocity);
+  sim::speed_profile recorded;
+  for (std::size_t i = 0; i < agent.states.size(); ++i) {
+    const double v = std::max(agent.states[i].velocity, 0.0);
+    largest = std::max(largest, v);
+    recorded.knots.push_back({s.time_step * static_cast<double>(i), v});
   }
-  ego.desired_speed = options.desired_speed.value_or(sum / static_cast<double>(agent.states.size()));
+  if (options.desired_speed) {
+    ego.desired_speed = *options.desired_speed;
+  } else {
+    ego.desired_speed = ego.initial_speed;
+    ego.desired_speed_profile = std::move(recorded);
+  }
   ego.shape = *body;
   ego.limits = options.limits;
   ego.limits.speed_cap = std::max({ego.limits.speed_cap, largest, ego.desired_speed});

@@ -50,13 +50,11 @@ class checker {
             "an arc length in [0, " + number(p.length()) + ") m, the path's length");
   }
 
-  void motion(const std::string& prefix, const scripted_motion& m) {
-    path_start(prefix, m.path, m.start_arc_length);
-    non_negative(prefix + "start_time", m.start_time, "s");
-    const auto& knots = m.speed.knots;
-    if (knots.empty()) fail(prefix + "speed", ": the speed profile has no knots");
+  void profile(const std::string& field, const speed_profile& profile) {
+    const auto& knots = profile.knots;
+    if (knots.empty()) fail(field, ": the speed profile has no knots");
     for (std::size_t i = 0; i < knots.size(); ++i) {
-      const std::string at = prefix + "speed.knots[" + std::to_string(i) + "]";
+      const std::string at = field + ".knots[" + std::to_string(i) + "]";
       non_negative(at + ".time", knots[i].time, "s");
       non_negative(at + ".speed", knots[i].speed, "m/s");
       if (i > 0) {
@@ -64,6 +62,12 @@ class checker {
                 "a time after the previous knot's " + number(knots[i - 1].time) + " s");
       }
     }
+  }
+
+  void motion(const std::string& prefix, const scripted_motion& m) {
+    path_start(prefix, m.path, m.start_arc_length);
+    non_negative(prefix + "start_time", m.start_time, "s");
+    profile(prefix + "speed", m.speed);
     if (m.stop) {
       require(std::isfinite(m.stop->arc_length) && m.stop->arc_length >= m.start_arc_length &&
                   m.stop->arc_length <= m.path.length(),
@@ -90,6 +94,7 @@ void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_s
   c.non_negative("start_time", v.start_time, "s");
   c.non_negative("initial_speed", v.initial_speed, "m/s");
   c.non_negative("desired_speed", v.desired_speed, "m/s");
+  if (v.desired_speed_profile) c.profile("desired_speed_profile", *v.desired_speed_profile);
   c.rectangle("", v.shape);
   c.positive("follower.lookahead_time", v.follower.lookahead_time, "s");
   c.positive("follower.min_lookahead", v.follower.min_lookahead, "m");

@@ -541,8 +541,11 @@ struct simulation::impl {
 
   follower_command nominal_of(const vehicle& v) const {
     const agent_state& s = states[id_of(v)];
-    return follow_path(v.spec->path, s.arc_length, s.pose, s.speed, v.spec->desired_speed, v.spec->follower,
-                       v.spec->limits);
+    const planning_vehicle& spec = *v.spec;
+    const double desired = spec.desired_speed_profile
+                               ? profile_speed(*spec.desired_speed_profile, now() - spec.start_time)
+                               : spec.desired_speed;
+    return follow_path(spec.path, s.arc_length, s.pose, s.speed, desired, spec.follower, spec.limits);
   }
 
   /// Sensing and decisions of every planning vehicle. A vehicle reads the states of all agents

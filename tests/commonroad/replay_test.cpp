@@ -115,7 +115,9 @@ TEST(replay, the_driven_road_user_starts_as_recorded_and_without_avoidance_keeps
   EXPECT_EQ(ego.name, "car-1");
   EXPECT_DOUBLE_EQ(ego.start_time, 0.30000000000000004);
   EXPECT_DOUBLE_EQ(ego.initial_speed, 10.0);
-  EXPECT_DOUBLE_EQ(ego.desired_speed, 10.0);  // its mean recorded speed
+  ASSERT_TRUE(ego.desired_speed_profile.has_value());  // its recorded speeds, from its start
+  EXPECT_EQ(ego.desired_speed_profile->knots.size(), 41U);
+  EXPECT_DOUBLE_EQ(ego.desired_speed_profile->knots[40].time, 4.0);
   EXPECT_FALSE(ego.avoidance);
   bool started = false;
   double largest_offset = 0.0;
@@ -133,6 +135,26 @@ TEST(replay, the_driven_road_user_starts_as_recorded_and_without_avoidance_keeps
   });
   EXPECT_TRUE(started);
   EXPECT_LT(largest_offset, 0.1) << "pure pursuit along the polyline of its recorded positions";
+}
+
+TEST(replay, the_driven_road_user_keeps_the_speeds_it_was_recorded_at_unless_given_one) {
+  scenario s = traffic();
+  std::vector<double> slowing;
+  for (int k = 0; k <= 40; ++k) slowing.push_back(k < 10 ? 10.0 : std::max(4.0, 10.0 - 0.6 * (k - 10)));
+  s.obstacles[0] = recorded(1, "car", {{0, 0}, 0.0}, slowing, 0.0, 0);
+  replay_options options;
+  options.agent = 1;
+  options.avoidance = false;
+  mm::sim::simulation recorded_speeds(replay_scenario(s, options));
+  mm::sim::run(recorded_speeds);
+  // Its speed keeping (a P-controller with a gain of 1/s, docs/simulator.md) follows the driver's
+  // slowing from 10 to 4 m/s with a lag.
+  EXPECT_LT(recorded_speeds.state(0).speed, 6.0) << "it slowed down as its driver did";
+  EXPECT_GT(recorded_speeds.state(0).speed, 4.0);
+  options.desired_speed = 10.0;
+  mm::sim::simulation constant_speed(replay_scenario(s, options));
+  mm::sim::run(constant_speed);
+  EXPECT_NEAR(constant_speed.state(0).speed, 10.0, 1e-9);
 }
 
 TEST(replay, the_loop_is_closed_the_planner_avoids_the_car_the_recorded_driver_ran_into) {

@@ -52,3 +52,22 @@ def test_bad_files_and_unknown_road_users_raise_value_errors_that_say_where(sour
     s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
     with pytest.raises(mm.commonroad.measure_error, match="424242"):
         mm.commonroad.measure(s, 424242)
+
+
+def test_a_replay_drives_one_road_user_with_the_planner_and_replays_the_others(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
+    baseline = mm.sim.run(mm.commonroad.replay_scenario(s, 34, avoidance=False))
+    planned = mm.sim.run(mm.commonroad.replay_scenario(s, 34, desired_speed=9.0))
+    assert [a.name for a in planned.agents] == ["car-34", "pedestrian-35"]
+    # The pedestrian is where it was recorded at every recorded step, in both runs.
+    pedestrian = s.obstacle(35)
+    for run in (baseline, planned):
+        for state in pedestrian.states:
+            k = int(round(state.step * s.time_step / 0.01))
+            if k < len(run.times):
+                assert run.present[k, 1]
+                assert abs(run.x[k, 1] - state.position.x) < 1e-6 and abs(run.y[k, 1] - state.position.y) < 1e-6
+    assert len(baseline.maps[0].times) == 0 and baseline.metrics[0].max_lateral_offset_m < 0.05
+    assert len(planned.maps[0].times) > 0 and planned.metrics[0].max_lateral_offset_m > 0.5
+    with pytest.raises(mm.commonroad.measure_error, match="a pedestrian"):
+        mm.commonroad.replay_scenario(s, 35)

@@ -427,3 +427,27 @@ TEST(simulation, a_run_without_the_map_columns_makes_the_same_decisions_bit_for_
 
 }  // namespace
 }  // namespace mm::sim
+
+TEST(simulation, a_desired_speed_profile_replaces_the_constant_desired_speed_from_the_vehicles_start) {
+  scenario s;
+  s.duration = 9.0;
+  planning_vehicle a = cruising("A", straight_path({0.0, 0.0}, 0.0, 200.0), 10.0);
+  a.avoidance = false;
+  a.start_time = 1.0;
+  a.desired_speed = 20.0;  // not used: the profile says 10 m/s until 2 s after the start, then 4 m/s from 3 s
+  a.desired_speed_profile = speed_profile{{{0.0, 10.0}, {2.0, 10.0}, {3.0, 4.0}}};
+  s.planning_vehicles.push_back(a);
+  simulation sim(s);
+  while (sim.time() < 2.5 - 1e-9) sim.step();
+  EXPECT_NEAR(sim.state(0).speed, 10.0, 1e-9) << "1.5 s after its start the profile still says 10 m/s";
+  while (!sim.ended()) sim.step();
+  EXPECT_NEAR(sim.state(0).speed, 4.0, 0.05) << "the speed keeping has followed the profile down";
+
+  scenario bad = s;
+  bad.planning_vehicles[0].desired_speed_profile = speed_profile{{{1.0, 5.0}, {1.0, 6.0}}};
+  const auto error = validation_error(bad);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_NE(error->find("desired_speed_profile.knots[1].time = 1: expected a time after the previous knot's 1 s"),
+            std::string::npos)
+      << *error;
+}

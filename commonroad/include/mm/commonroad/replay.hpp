@@ -16,7 +16,8 @@ struct replay_options {
   planner_config config;    ///< its planner (spec §4–§9)
   /// Its limits (spec §3); the speed cap is raised to its largest recorded speed where that is higher.
   ego_limits limits;
-  /// v_des [m/s] of its speed keeping; none: its mean recorded speed.
+  /// v_des [m/s] of its speed keeping; none: its recorded speed at the same time (the driver's own
+  /// speed, as the desired speed profile of the planning vehicle).
   std::optional<double> desired_speed;
   /// false: it follows its recorded path at its desired speed without planning (the baseline).
   bool avoidance = true;
@@ -25,7 +26,8 @@ struct replay_options {
 /// The recording as a simulation (closed loop for one road user, the others replayed):
 /// - the road user `options.agent` becomes a planning vehicle whose reference path is the polyline
 ///   through its recorded positions; it enters at its first recorded step with its recorded speed
-///   and then follows that path with the planner, at its desired speed;
+///   and then follows that path with the planner, keeping the speed it had at the same time in the
+///   recording (or a given constant one);
 /// - every other road user replays its recording exactly at the recorded steps (linearly between
 ///   them, along the polyline of its positions, at the speed that covers each piece in one step),
 ///   entering at its first step and leaving after its last; a rectangle becomes a scripted vehicle,

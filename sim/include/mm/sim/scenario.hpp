@@ -35,6 +35,9 @@ struct planning_vehicle {
   before_start_behaviour before_start = before_start_behaviour::absent;
   double initial_speed = 0.0;            ///< v at the start [m/s], 0 ≤ v ≤ limits.speed_cap
   double desired_speed = 0.0;            ///< v_des [m/s] ≥ 0: the cruise speed, not a cap (spec §3)
+  /// When set, the desired speed changes over the run: v_des(t) = `profile_speed(*desired_speed_profile,
+  /// t − start_time)` replaces `desired_speed` (e.g. the recorded speeds of a replayed driver).
+  std::optional<speed_profile> desired_speed_profile;
   mm::rectangle shape;                   ///< footprint, spec §2 default 4.5 m × 1.8 m
   mm::ego_limits limits;                 ///< a_max, d_max, a_lat_max, R_min, v_cap (spec §3)
   /// Forecast policy, horizons, urgent steering, safety margin (spec §2–§9). With the default

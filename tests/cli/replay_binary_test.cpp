@@ -1,0 +1,87 @@
+// `maneuvermap replay` as a user runs it on CommonRoad files: a run's files, byte-identical on a
+// second run, the baseline without avoidance, and the exit code and message of each kind of bad input.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "cli/support.hpp"
+
+namespace {
+
+using mm::cli::testing::contains;
+using mm::cli::testing::csv_rows;
+using mm::cli::testing::read_file;
+using mm::cli::testing::temp_dir;
+using result = mm::cli::testing::command_result;
+
+std::string recording(const std::string& name) {
+  return (std::filesystem::path(MM_SOURCE_DIR) / "data/commonroad" / (name + ".xml")).string();
+}
+
+result replay(const std::string& args, const temp_dir& dir) {
+  return mm::cli::testing::run_command(MANEUVERMAP_EXE, "replay " + args, dir);
+}
+
+TEST(maneuvermap_replay, drives_the_recorded_ego_with_the_planner_and_writes_the_files_of_a_run_twice_alike) {
+  const temp_dir dir("replay_ego");
+  const std::string file = recording("OSC_PedestrianCollision-1_1_T-1");
+  const result r = replay(file + " --out " + (dir / "run").string(), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "road user 34 driven by the planner (avoiding), desired speed its recorded speeds")) << r.out;
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "run" / name)) << name;
+  }
+  // The car and the pedestrian, every 10 ms while present; the car plans at every step but the last
+  // (the crash ends the run, and nothing is planned at the instant a run ends).
+  std::size_t car = 0;
+  std::size_t pedestrian = 0;
+  for (const auto& row : csv_rows(dir / "run/trajectories.csv")) {
+    car += row[1] == "car-34";
+    pedestrian += row[1] == "pedestrian-35";
+  }
+  EXPECT_GT(car, 500U);
+  EXPECT_EQ(pedestrian, car);
+  EXPECT_EQ(csv_rows(dir / "run/decisions.csv").size() + 1, car);
+  EXPECT_TRUE(contains(read_file(dir / "run/scene.json"), "\"name\":\"lanelet ")) << "the lanes, drawn as roads";
+
+  const result again = replay(file + " --out " + (dir / "again").string(), dir);
+  ASSERT_EQ(again.code, 0) << again.err;
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
+    EXPECT_EQ(read_file(dir / "run" / name), read_file(dir / "again" / name)) << name;
+  }
+}
+
+TEST(maneuvermap_replay, without_avoidance_the_car_keeps_its_speed_and_path_and_no_map_is_computed) {
+  const temp_dir dir("replay_baseline");
+  const result r = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --no-avoidance --desired-speed 30 --out " +
+                              (dir / "run").string(),
+                          dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "(without avoidance), desired speed 30.0 km/h")) << r.out;
+  EXPECT_TRUE(csv_rows(dir / "run/map.csv").empty());
+}
+
+TEST(maneuvermap_replay, bad_input_exits_2_with_a_message_that_says_what_was_wrong) {
+  const temp_dir dir("replay_bad");
+  const std::string out = " --out " + (dir / "run").string();
+  const result no_ego = replay(recording("ZAM_Tutorial-1_2_T-1") + out, dir);
+  EXPECT_EQ(no_ego.code, 2);
+  EXPECT_TRUE(contains(no_ego.err, "give --agent ID, one of: 42, 44")) << no_ego.err;
+  const result unknown = replay(recording("ZAM_Tutorial-1_2_T-1") + " --agent 999" + out, dir);
+  EXPECT_EQ(unknown.code, 2);
+  EXPECT_TRUE(contains(unknown.err, "road user 999: no obstacle has this id")) << unknown.err;
+  const result pedestrian = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --agent 35" + out, dir);
+  EXPECT_EQ(pedestrian.code, 2);
+  EXPECT_TRUE(contains(pedestrian.err, "a pedestrian")) << pedestrian.err;
+  const result missing = replay((dir / "no-such-file.xml").string() + out, dir);
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_TRUE(contains(missing.err, "no-such-file.xml")) << missing.err;
+  for (const char* option : {"--agent 0", "--agent abc", "--policy sometimes", "--policy const:0.3", "--desired-speed -5"}) {
+    const result bad = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " " + option + out, dir);
+    EXPECT_EQ(bad.code, 2) << option << ": " << bad.err;
+    EXPECT_TRUE(contains(bad.err, "maneuvermap: ")) << option << ": " << bad.err;
+  }
+}
+
+}  // namespace
