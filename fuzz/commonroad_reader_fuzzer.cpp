@@ -1,8 +1,9 @@
 // libFuzzer target for the CommonRoad reader: any input must either read or be rejected with a
 // read_error that says something; what it reads must give a planning input of its first road user
 // at its last state, or be refused with a measure_error, and the planner must plan on that input
-// (indices in [0, 1]) or refuse it with a status. Any other exception, a crash, a leak or a hang
-// is a bug.
+// (indices in [0, 1]) or refuse it with a status; and its replay with that road user driven by the
+// planner must be a valid simulation that takes a few steps, or be refused with a measure_error.
+// Any other exception, a crash, a leak or a hang is a bug.
 // Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
 #include <cstddef>
 #include <cstdint>
@@ -11,6 +12,8 @@
 
 #include "mm/commonroad/measure.hpp"
 #include "mm/commonroad/reader.hpp"
+#include "mm/commonroad/replay.hpp"
+#include "mm/sim/simulation.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -27,6 +30,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const mm::plan_input in = mm::commonroad::planning_input(s, options, agent->states.back().step);
     const mm::plan_result r = mm::plan(in);
     if (r.ok() && !(r.mi_brake_selected >= 0.0 && r.mi_brake_selected <= 1.0)) __builtin_trap();
+    mm::commonroad::replay_options replay;
+    replay.agent = options.agent;
+    mm::sim::simulation sim(mm::commonroad::replay_scenario(s, replay));
+    for (int k = 0; k < 5 && !sim.ended(); ++k) sim.step();
   } catch (const mm::commonroad::read_error& e) {
     if (std::string_view(e.what()).empty()) __builtin_trap();
   } catch (const mm::commonroad::measure_error& e) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -20,6 +21,11 @@ namespace {
 
 /// Positions closer than this to the previous kept one are the same path point [m].
 constexpr double same_point = 1e-3;
+
+/// What a replay allows, the limits of a scenario file (docs/scenario-format.md): within them the
+/// planner's collision time step stays above its floor (spec §5, method.md §5 item 14).
+constexpr double fastest = 100.0;  ///< [m/s]
+constexpr double smallest = 0.05;  ///< [m], every footprint's smallest dimension
 
 /// The path along a road user's recorded positions and how far along it each state is [m].
 struct recorded_path {
@@ -82,6 +88,35 @@ measure_error cannot_replay(const obstacle& o, const std::string& why) {
   return measure_error("road user " + std::to_string(o.id) + " (" + o.type + "): " + why);
 }
 
+/// `cannot_replay` unless the footprint of `o` is at least `smallest` across and it moves no faster
+/// than `fastest`: every speed of `profile`, or when there is none, of its recorded states.
+void check_limits(const obstacle& o, const sim::speed_profile* profile, double dt) {
+  if (smallest_dimension(o.shape) < smallest) {
+    throw cannot_replay(o, "its footprint is " + std::to_string(smallest_dimension(o.shape)) +
+                               " m across: expected at least 0.05 m, as in a scenario file");
+  }
+  const auto too_fast = [&](double v, double t) {
+    if (!(v <= fastest)) {
+      throw cannot_replay(o, "it moves at " + std::to_string(v) + " m/s, " + std::to_string(t) +
+                                 " s after its start: expected at most 100 m/s, as in a scenario file");
+    }
+  };
+  if (profile != nullptr) {
+    for (const sim::speed_knot& k : profile->knots) too_fast(k.speed, k.time);
+    return;
+  }
+  for (const state& x : o.states) too_fast(x.velocity, static_cast<double>(x.step - o.states.front().step) * dt);
+}
+
+/// The polyline through `points`, or `cannot_replay` when it is not one (lengths that overflow).
+sim::path polyline_of(const obstacle& o, const std::vector<vec2>& points) {
+  try {
+    return sim::path::polyline(points);
+  } catch (const std::invalid_argument& e) {
+    throw cannot_replay(o, std::string("its recorded positions make no path: ") + e.what());
+  }
+}
+
 }  // namespace
 
 std::string replay_name(const obstacle& o) { return (o.type.empty() ? "obstacle" : o.type) + "-" + std::to_string(o.id); }
@@ -101,11 +136,12 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
 
   const auto* body = std::get_if<rectangle>(&agent.shape);
   if (body == nullptr) throw cannot_replay(agent, "the planner drives a rectangular footprint; this one is not");
+  check_limits(agent, nullptr, s.time_step);
   const recorded_path route = path_of(agent);
   if (route.points.size() < 2) throw cannot_replay(agent, "it does not move, so it has no path to follow");
   sim::planning_vehicle ego;
   ego.name = replay_name(agent);
-  ego.path = sim::path::polyline(route.points);
+  ego.path = polyline_of(agent, route.points);
   ego.start_time = step_time(s, agent.states.front().step);
   ego.initial_speed = std::max(agent.states.front().velocity, 0.0);
   double largest = 0.0;
@@ -132,13 +168,15 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
     if (o.id == agent.id || o.states.empty()) continue;
     const recorded_path p = path_of(o);
     if (o.role == obstacle_role::static_obstacle || p.points.size() < 2) {
+      check_limits(o, nullptr, s.time_step);
       out.static_obstacles.push_back({replay_name(o), world_polygon(o.shape, o.states.front())});
       continue;
     }
     sim::scripted_motion motion;
-    motion.path = sim::path::polyline(p.points);
+    motion.path = polyline_of(o, p.points);
     motion.start_time = step_time(s, o.states.front().step);
     motion.speed = profile_of(p, s.time_step);
+    check_limits(o, &motion.speed, s.time_step);
     if (const auto* r = std::get_if<rectangle>(&o.shape)) {
       out.scripted_vehicles.push_back({replay_name(o), std::move(motion), *r});
     } else if (const auto* d = std::get_if<disc>(&o.shape)) {

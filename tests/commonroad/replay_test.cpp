@@ -225,6 +225,34 @@ TEST(replay, a_road_user_that_cannot_be_driven_or_moved_is_refused_with_its_id_a
         }
       },
       measure_error);
+  scenario tiny = traffic();
+  tiny.obstacles[2].shape = mm::disc{0.01};
+  EXPECT_THROW(
+      {
+        try {
+          replay_scenario(tiny, options);
+        } catch (const measure_error& e) {
+          EXPECT_NE(std::string(e.what()).find("road user 3 (pedestrian): its footprint is 0.020000 m across: expected "
+                                               "at least 0.05 m"),
+                    std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      measure_error);
+  scenario jump = traffic();
+  jump.obstacles[1].states[10].position.x += 50.0;  // 500 m/s over one step, and back
+  EXPECT_THROW(
+      {
+        try {
+          replay_scenario(jump, options);
+        } catch (const measure_error& e) {
+          EXPECT_NE(std::string(e.what()).find("road user 2 (car): it moves at"), std::string::npos) << e.what();
+          EXPECT_NE(std::string(e.what()).find("expected at most 100 m/s"), std::string::npos) << e.what();
+          throw;
+        }
+      },
+      measure_error);
   scenario round = traffic();
   round.obstacles[0].shape = mm::disc{1.0};
   EXPECT_THROW(replay_scenario(round, options), measure_error);
