@@ -365,7 +365,8 @@ int main(int argc, char** argv) {
 
   replay_command_options replay_options;
   CLI::App* replay = app.add_subcommand(
-      "replay", "Drive one road user of a CommonRoad recording with the planner, the others replayed; write a run's files");
+      "replay",
+      "Drive one road user of a CommonRoad recording with the planner, the others replayed; write a run's files");
   replay->add_option("FILE", replay_options.file, "CommonRoad scenario file (XML, version 2018b or 2020a)")
       ->required()
       ->type_name("FILE.xml");
@@ -381,7 +382,8 @@ int main(int argc, char** argv) {
       ->type_name("KMH");
   replay->add_flag("--no-avoidance", replay_options.no_avoidance,
                    "Follow the recorded path without planning (the baseline)");
-  replay->add_option("--out", replay_options.out, "Output directory (default out/<file name>-replay)")->type_name("DIR");
+  replay->add_option("--out", replay_options.out, "Output directory (default out/<file name>-replay)")
+      ->type_name("DIR");
   replay->add_flag("--plots", replay_options.plots, "Then draw the run's figures into its output directory");
 
   try {

@@ -119,7 +119,9 @@ sim::path polyline_of(const obstacle& o, const std::vector<vec2>& points) {
 
 }  // namespace
 
-std::string replay_name(const obstacle& o) { return (o.type.empty() ? "obstacle" : o.type) + "-" + std::to_string(o.id); }
+std::string replay_name(const obstacle& o) {
+  return (o.type.empty() ? "obstacle" : o.type) + "-" + std::to_string(o.id);
+}
 
 sim::scenario replay_scenario(const scenario& s, const replay_options& options) {
   const obstacle& agent = measured(s, options.agent);
@@ -182,11 +184,13 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
     } else if (const auto* d = std::get_if<disc>(&o.shape)) {
       out.pedestrians.push_back({replay_name(o), std::move(motion), d->radius});
     } else {
-      throw cannot_replay(o, "a moving polygon (an offset shape in the file): the simulator moves rectangles and discs");
+      throw cannot_replay(o, "a moving polygon (an offset shape in the file): the simulator moves rectangles "
+                             "and discs");
     }
   }
   if (const auto problem = sim::validation_error(out)) {
-    throw measure_error("the replay of road user " + std::to_string(agent.id) + " is not a valid simulation: " + *problem);
+    throw measure_error("the replay of road user " + std::to_string(agent.id) +
+                        " is not a valid simulation: " + *problem);
   }
   return out;
 }
