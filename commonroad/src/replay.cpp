@@ -168,11 +168,18 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
 
   for (const obstacle& o : s.obstacles) {
     if (o.id == agent.id || o.states.empty()) continue;
-    const recorded_path p = path_of(o);
-    if (o.role == obstacle_role::static_obstacle || p.points.size() < 2) {
+    recorded_path p = path_of(o);
+    if (o.role == obstacle_role::static_obstacle) {
       check_limits(o, nullptr, s.time_step);
       out.static_obstacles.push_back({replay_name(o), world_polygon(o.shape, o.states.front())});
       continue;
+    }
+    if (p.points.size() < 2) {
+      // Standing for its recorded steps: a path of 1 mm along its heading, which it leaves at once
+      // after its last state as a moving road user does.
+      const state& x = o.states.front();
+      p.points.push_back({x.position.x + same_point * std::cos(x.orientation),
+                          x.position.y + same_point * std::sin(x.orientation)});
     }
     sim::scripted_motion motion;
     motion.path = polyline_of(o, p.points);

@@ -40,7 +40,8 @@ obstacle recorded(std::uint32_t id, const std::string& type, mm::pose start, con
 std::vector<double> constant(double v, std::size_t n) { return std::vector<double>(n, v); }
 
 /// Car 1 drives east at 10 m/s (steps 0–40); car 2 turns left while it slows from 8 to 2 m/s
-/// (steps 5–30); pedestrian 3 walks, stops, walks (steps 0–40); car 4 stands (never moves).
+/// (steps 5–30); pedestrian 3 walks, stops, walks (steps 0–40); car 4 stands, never moving (steps
+/// 10–25).
 scenario traffic() {
   scenario s;
   s.benchmark_id = "TEST_Replay-1";
@@ -53,7 +54,7 @@ scenario traffic() {
   std::vector<double> walking = constant(1.4, 41);
   for (std::size_t k = 15; k < 25; ++k) walking[k] = 0.0;
   s.obstacles.push_back(recorded(3, "pedestrian", {{-30, 20}, -0.5}, walking, 0.0, 0, mm::disc{0.3}));
-  s.obstacles.push_back(recorded(4, "car", {{-50, -10}, 1.0}, constant(0.0, 41), 0.0, 0));
+  s.obstacles.push_back(recorded(4, "car", {{-50, -10}, 1.0}, constant(0.0, 16), 0.0, 10));
   s.planning_problems.push_back({100, at(0, {0, 0}, 0.0, 10.0)});
   return s;
 }
@@ -76,17 +77,17 @@ TEST(replay, every_replayed_road_user_is_where_it_was_recorded_at_every_recorded
   options.avoidance = false;
   const mm::sim::scenario sc = replay_scenario(s, options);
   ASSERT_EQ(sc.planning_vehicles.size(), 1U);
-  ASSERT_EQ(sc.scripted_vehicles.size(), 1U);
+  ASSERT_EQ(sc.scripted_vehicles.size(), 2U);
   ASSERT_EQ(sc.pedestrians.size(), 1U);
-  ASSERT_EQ(sc.static_obstacles.size(), 1U);  // car 4 never moves
+  EXPECT_TRUE(sc.static_obstacles.empty());
   EXPECT_EQ(sc.scripted_vehicles[0].name, "car-2");
-  EXPECT_EQ(sc.static_obstacles[0].name, "car-4");
+  EXPECT_EQ(sc.scripted_vehicles[1].name, "car-4");  // never moves: it stands for its recorded steps
   EXPECT_DOUBLE_EQ(sc.duration, 4.0);
   std::size_t checked = 0;
   run(sc, [&](const mm::sim::simulation& sim) {
     const long hundredths = std::lround(sim.time() * 100.0);
-    for (const char* name : {"car-2", "pedestrian-3"}) {
-      const obstacle& o = s.obstacles[name[0] == 'c' ? 1 : 2];
+    for (const std::string name : {"car-2", "pedestrian-3", "car-4"}) {
+      const obstacle& o = s.obstacles[name == "car-2" ? 1 : name == "pedestrian-3" ? 2 : 3];
       const mm::sim::agent_state& a = sim.state(*sim.find(name));
       const std::int64_t first = o.states.front().step;
       const std::int64_t last = o.states.back().step;
@@ -101,7 +102,7 @@ TEST(replay, every_replayed_road_user_is_where_it_was_recorded_at_every_recorded
       ++checked;
     }
   });
-  EXPECT_EQ(checked, 26U + 41U);
+  EXPECT_EQ(checked, 26U + 41U + 16U);
 }
 
 TEST(replay, the_driven_road_user_starts_as_recorded_and_without_avoidance_keeps_to_its_recorded_path) {

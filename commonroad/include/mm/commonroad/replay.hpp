@@ -30,8 +30,8 @@ struct replay_options {
 ///   recording (or a given constant one);
 /// - every other road user replays its recording exactly at the recorded steps (linearly between
 ///   them, along the polyline of its positions, at the speed that covers each piece in one step),
-///   entering at its first step and leaving after its last; a rectangle becomes a scripted vehicle,
-///   a disc a pedestrian; one that never moves (or has one state) a static obstacle;
+///   entering at its first step and leaving after its last (one that never moves stands there for
+///   its recorded steps); a rectangle becomes a scripted vehicle, a disc a pedestrian;
 /// - static obstacles keep their footprint (a disc as the 16-gon around it).
 /// The run lasts until the last recorded step, at the simulator's 100 Hz. The replayed road users do
 /// not react to the planned one. Throws `measure_error` naming the road user that cannot be replayed
