@@ -93,11 +93,15 @@ std::vector<double> sample_times(double duration, double step) {
   return times;
 }
 
+double tunneling_relative_speed(const ego_state& ego, const forecast_obstacle& obstacle,
+                                const collision_window& window) {
+  return speed_after(ego.speed, ego.limits.max_acceleration, window.horizon, ego.limits.speed_cap) +
+         obstacle.motion.speed;
+}
+
 double tunneling_time_step(const ego_state& ego, const forecast_obstacle& obstacle,
                            const collision_window& window) {
-  const double ego_top_speed =
-      speed_after(ego.speed, ego.limits.max_acceleration, window.horizon, ego.limits.speed_cap);
-  const double relative_speed = ego_top_speed + obstacle.motion.speed;
+  const double relative_speed = tunneling_relative_speed(ego, obstacle, window);
   const double dimension = std::min(smallest_dimension(ego.shape), smallest_dimension(obstacle.shape));
   if (relative_speed <= 0.0) return window.duration;
   return dimension / relative_speed;

@@ -496,10 +496,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
                      three_digits(step) + " s; expected at least " + three_digits(smallest_collision_time_step) +
                      " s: footprints of road users (not of micrometres) and speeds of road users (the ego's top "
                      "speed and the obstacle's estimated speed add up to " +
-                     three_digits(speed_after(ego.speed, ego.limits.max_acceleration, window.horizon,
-                                              ego.limits.speed_cap) +
-                                  relevant[k].motion.speed) +
-                     " m/s)");
+                     three_digits(tunneling_relative_speed(ego, relevant[k], window)) + " m/s)");
     }
     window.time_step = std::min(window.time_step, step);
   }

@@ -46,8 +46,13 @@ double largest_point_speed(const forecast_obstacle& obstacle);
 /// The sample times k·step, k = 0..K, of [0, duration], the last one equal to `duration`.
 std::vector<double> sample_times(double duration, double step);
 
+/// The largest relative speed of the ego and `obstacle` within the window [m/s] (spec §5): the ego's
+/// top speed, v0 accelerated at a_max until T_h and capped at v_cap, plus the obstacle's speed.
+double tunneling_relative_speed(const ego_state& ego, const forecast_obstacle& obstacle,
+                                const collision_window& window);
+
 /// Largest time step [s] at which the ego and `obstacle` cannot pass through each other between
-/// samples (spec §5): the smallest footprint dimension over the largest relative speed within the window.
+/// samples (spec §5): the smallest footprint dimension over `tunneling_relative_speed`.
 double tunneling_time_step(const ego_state& ego, const forecast_obstacle& obstacle,
                            const collision_window& window);
 
