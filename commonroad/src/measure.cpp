@@ -17,12 +17,6 @@ obstacle_kind kind_of(const obstacle& o) {
   return is_pedestrian(o) ? obstacle_kind::pedestrian : obstacle_kind::vehicle;
 }
 
-double largest_speed(const obstacle& o) {
-  double v = 0.0;
-  for (const state& x : o.states) v = std::max(v, x.velocity);
-  return v;
-}
-
 }  // namespace
 
 plan_input planning_input(const scenario& s, const measure_options& options, std::int64_t step,

@@ -1,5 +1,7 @@
 #include "mm/commonroad/reader.hpp"
 
+#include "recording.hpp"
+
 #include <pugixml.hpp>
 
 #include <algorithm>
@@ -10,7 +12,6 @@
 #include <fstream>
 #include <ios>
 #include <limits>
-#include <numbers>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -25,7 +26,6 @@ namespace {
 
 /// Steps beyond this are rejected, so that step arithmetic cannot overflow.
 constexpr std::int64_t max_step = std::numeric_limits<std::int32_t>::max();
-constexpr std::size_t circle_polygon_vertices = 16;
 constexpr std::string_view one_shape = "one <rectangle>, <circle> or <polygon>";
 
 std::string_view trim(std::string_view s) {
@@ -314,13 +314,7 @@ class reader {
       result = offset_shape(rectangle{length, width}, angle, optional_center(s, here), {{l, -w}, {l, w}, {-l, w}, {-l, -w}});
     } else if (name == "circle") {
       const double radius = child_number(s, "radius", here, "a positive finite number of metres", true);
-      const double vertex_radius = radius / std::cos(std::numbers::pi / static_cast<double>(circle_polygon_vertices));
-      std::vector<vec2> vertices;
-      for (std::size_t k = 0; k < circle_polygon_vertices; ++k) {
-        const double angle = 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(circle_polygon_vertices);
-        vertices.push_back(vertex_radius * unit_vector(angle));
-      }
-      result = offset_shape(disc{radius}, 0.0, optional_center(s, here), vertices);
+      result = offset_shape(disc{radius}, 0.0, optional_center(s, here), detail::circle_polygon(radius));
     } else if (name == "polygon") {
       convex_polygon polygon;
       std::size_t index = 0;

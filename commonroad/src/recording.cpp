@@ -1,6 +1,8 @@
 #include "recording.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "mm/geometry.hpp"
 
@@ -52,6 +54,23 @@ const obstacle& measured(const scenario& s, std::uint32_t agent) {
 
 observation observed(const scenario& s, const state& x) {
   return {step_time(s, x.step), pose{x.position, wrap_angle(x.orientation)}, std::max(x.velocity, 0.0)};
+}
+
+double largest_speed(const obstacle& o) {
+  double v = 0.0;
+  for (const state& x : o.states) v = std::max(v, x.velocity);
+  return v;
+}
+
+std::vector<vec2> circle_polygon(double radius) {
+  constexpr std::size_t sides = 16;
+  const double vertex_radius = radius / std::cos(std::numbers::pi / static_cast<double>(sides));
+  std::vector<vec2> vertices;
+  for (std::size_t k = 0; k < sides; ++k) {
+    const double angle = 2.0 * std::numbers::pi * static_cast<double>(k) / static_cast<double>(sides);
+    vertices.push_back(vertex_radius * unit_vector(angle));
+  }
+  return vertices;
 }
 
 }  // namespace mm::commonroad::detail

@@ -1,7 +1,8 @@
 #pragma once
 
-// What measuring and replaying a recording share: finding a road user, its state at a step, the
-// check that it can be the planner's ego (internal to mm::commonroad).
+// What reading, measuring and replaying a recording share: finding a road user, its state at a
+// step, the check that it can be the planner's ego, its largest speed, and the polygon a circle
+// becomes (internal to mm::commonroad).
 
 #include <cstdint>
 #include <string>
@@ -10,6 +11,7 @@
 #include "mm/commonroad/measure.hpp"
 #include "mm/commonroad/scenario.hpp"
 #include "mm/forecast.hpp"
+#include "mm/geometry.hpp"
 
 namespace mm::commonroad::detail {
 
@@ -34,5 +36,12 @@ const obstacle& measured(const scenario& s, std::uint32_t agent);
 
 /// A recorded state as an observation: its time, its pose (heading wrapped) and max(v, 0).
 observation observed(const scenario& s, const state& x);
+
+/// The largest recorded speed of `o` [m/s], at least 0.
+double largest_speed(const obstacle& o);
+
+/// The regular 16-gon around a circle of `radius` [m] about the origin, counter-clockwise from +x:
+/// how a circle becomes a polygon (an offset circle in a file, a static disc in a replay).
+std::vector<vec2> circle_polygon(double radius);
 
 }  // namespace mm::commonroad::detail

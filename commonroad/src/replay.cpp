@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -22,10 +21,6 @@ namespace {
 /// Positions closer than this to the previous kept one are the same path point [m].
 constexpr double same_point = 1e-3;
 
-/// What a replay allows, the limits of a scenario file (docs/scenario-format.md): within them the
-/// planner's collision time step stays above its floor (spec §5, method.md §5 item 14).
-constexpr double fastest = 100.0;  ///< [m/s]
-constexpr double smallest = 0.05;  ///< [m], every footprint's smallest dimension
 
 /// The path along a road user's recorded positions and how far along it each state is [m].
 struct recorded_path {
@@ -71,13 +66,8 @@ sim::speed_profile profile_of(const recorded_path& p, double dt) {
 std::vector<vec2> world_polygon(const footprint& shape, const state& x) {
   const pose where{x.position, x.orientation};
   if (const auto* d = std::get_if<disc>(&shape)) {
-    std::vector<vec2> corners;
-    constexpr int sides = 16;
-    const double r = d->radius / std::cos(std::numbers::pi / sides);
-    for (int k = 0; k < sides; ++k) {
-      const double a = 2.0 * std::numbers::pi * k / sides;
-      corners.push_back({x.position.x + r * std::cos(a), x.position.y + r * std::sin(a)});
-    }
+    std::vector<vec2> corners = circle_polygon(d->radius);
+    for (vec2& corner : corners) corner = x.position + corner;
     return corners;
   }
   const placed_footprint placed = place(shape, where);
@@ -88,15 +78,16 @@ measure_error cannot_replay(const obstacle& o, const std::string& why) {
   return measure_error("road user " + std::to_string(o.id) + " (" + o.type + "): " + why);
 }
 
-/// `cannot_replay` unless the footprint of `o` is at least `smallest` across and it moves no faster
-/// than `fastest`: every speed of `profile`, or when there is none, of its recorded states.
+/// `cannot_replay` unless the footprint of `o` is at least `sim::smallest_road_user_size` across
+/// and it moves no faster than `sim::largest_road_user_speed`, as in a scenario file: every speed of
+/// `profile`, or when there is none, of its recorded states.
 void check_limits(const obstacle& o, const sim::speed_profile* profile, double dt) {
-  if (smallest_dimension(o.shape) < smallest) {
+  if (smallest_dimension(o.shape) < sim::smallest_road_user_size) {
     throw cannot_replay(o, "its footprint is " + std::to_string(smallest_dimension(o.shape)) +
                                " m across: expected at least 0.05 m, as in a scenario file");
   }
   const auto too_fast = [&](double v, double t) {
-    if (!(v <= fastest)) {
+    if (!(v <= sim::largest_road_user_speed)) {
       throw cannot_replay(o, "it moves at " + std::to_string(v) + " m/s, " + std::to_string(t) +
                                  " s after its start: expected at most 100 m/s, as in a scenario file");
     }
@@ -146,12 +137,9 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
   ego.path = polyline_of(agent, route.points);
   ego.start_time = step_time(s, agent.states.front().step);
   ego.initial_speed = std::max(agent.states.front().velocity, 0.0);
-  double largest = 0.0;
   sim::speed_profile recorded;
   for (std::size_t i = 0; i < agent.states.size(); ++i) {
-    const double v = std::max(agent.states[i].velocity, 0.0);
-    largest = std::max(largest, v);
-    recorded.knots.push_back({s.time_step * static_cast<double>(i), v});
+    recorded.knots.push_back({s.time_step * static_cast<double>(i), std::max(agent.states[i].velocity, 0.0)});
   }
   if (options.desired_speed) {
     ego.desired_speed = *options.desired_speed;
@@ -161,7 +149,7 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
   }
   ego.shape = *body;
   ego.limits = options.limits;
-  ego.limits.speed_cap = std::max({ego.limits.speed_cap, largest, ego.desired_speed});
+  ego.limits.speed_cap = std::max({ego.limits.speed_cap, largest_speed(agent), ego.desired_speed});
   ego.planner = options.config;
   ego.avoidance = options.avoidance;
   out.planning_vehicles.push_back(std::move(ego));

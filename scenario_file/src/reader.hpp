@@ -12,6 +12,7 @@
 
 #include "mm/geometry.hpp"
 #include "mm/scenario_file/loader.hpp"
+#include "mm/sim/scenario.hpp"
 
 namespace mm::scenario_file::detail {
 
@@ -35,12 +36,11 @@ inline constexpr unit radians{"_rad", 1.0, "rad"};
 
 /// Allowed ranges of numbers (checked on the value as written).
 /// `size`: the size of a footprint, at least `smallest_size`; `speed`: from 0 to `largest_speed`
-/// (in SI units), `positive_speed` above 0. Road users' sizes and speeds, not micrometres or thousands of metres per second:
-/// with both, the planner's tunneling time step (size over relative speed) stays far above its
-/// floor of 0.1 ms (docs/method.md §5, item 14): 0.05 m over 200 m/s is 0.25 ms.
+/// (in SI units), `positive_speed` above 0: road users' sizes and speeds
+/// (`mm::sim::smallest_road_user_size`, `largest_road_user_speed`).
 enum class range : std::uint8_t { any, non_negative, positive, size, speed, positive_speed };
-inline constexpr double smallest_size = 0.05;  ///< [m]
-inline constexpr double largest_speed = 100.0;  ///< [m/s]
+inline constexpr double smallest_size = mm::sim::smallest_road_user_size;  ///< [m]
+inline constexpr double largest_speed = mm::sim::largest_road_user_speed;  ///< [m/s]
 
 /// Where the loader is: the source name and the parameters fields may reference.
 struct context {

@@ -15,6 +15,13 @@
 
 namespace mm::sim {
 
+/// The sizes and speeds of road users that scenario files (docs/scenario-format.md) and CommonRoad
+/// replays (docs/commonroad.md) accept: within them the planner's tunneling time step, the smallest
+/// footprint dimension over the relative speed (spec §5), stays above its floor
+/// `mm::smallest_collision_time_step`: 0.05 m over 200 m/s is 0.25 ms.
+inline constexpr double smallest_road_user_size = 0.05;   ///< [m], a footprint's smallest dimension
+inline constexpr double largest_road_user_speed = 100.0;  ///< [m/s]
+
 /// Gaussian sensor noise on every observation a planning vehicle makes (spec §4): independent,
 /// zero-mean, with these standard deviations. Zero (the default) is exact sensing.
 struct sensing_noise {
