@@ -49,6 +49,13 @@ void add_scenario_options(CLI::App& command, scenario_options& o, bool with_poli
   }
 }
 
+/// The value of `--policy`: `adj` or `const:SECONDS`; input_error for anything else.
+mm::forecast_policy policy_option(const std::string& text) {
+  const std::optional<mm::forecast_policy> policy = sf::parse_policy(text);
+  if (!policy) throw mm::cli::input_error("--policy " + text + ": expected adj or const:SECONDS, e.g. const:1.0");
+  return *policy;
+}
+
 sf::loaded_scenario load(const scenario_options& o) {
   sf::load_options options;
   for (const std::string& text : o.overrides) {
@@ -56,10 +63,7 @@ sf::loaded_scenario load(const scenario_options& o) {
     if (!parsed) throw mm::cli::input_error("--set " + text + ": expected NAME=VALUE with a finite number VALUE");
     options.overrides.push_back(*parsed);
   }
-  if (!o.policy.empty()) {
-    options.policy = sf::parse_policy(o.policy);
-    if (!options.policy) throw mm::cli::input_error("--policy " + o.policy + ": expected adj or const:SECONDS, e.g. const:1.0");
-  }
+  if (!o.policy.empty()) options.policy = policy_option(o.policy);
   options.seed = o.seed;
   return sf::load(o.file, options);
 }
@@ -222,11 +226,7 @@ int measure_command(const measure_command_options& o) {
   const std::string name = std::filesystem::path(o.file).stem().string();
   mm::cli::measure_settings settings;
   parse_agents(o.agents, settings);
-  if (!o.policy.empty()) {
-    const auto policy = sf::parse_policy(o.policy);
-    if (!policy) throw mm::cli::input_error("--policy " + o.policy + ": expected adj or const:SECONDS, e.g. const:1.0");
-    settings.policy = *policy;
-  }
+  if (!o.policy.empty()) settings.policy = policy_option(o.policy);
   settings.out_dir = o.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(o.out);
   settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
   settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
@@ -254,11 +254,7 @@ int replay_command(const replay_command_options& o) {
   const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
   mm::commonroad::replay_options options;
   options.agent = o.agent ? *o.agent : mm::cli::default_replay_agent(recording);
-  if (!o.policy.empty()) {
-    const auto policy = sf::parse_policy(o.policy);
-    if (!policy) throw mm::cli::input_error("--policy " + o.policy + ": expected adj or const:SECONDS, e.g. const:1.0");
-    options.config.policy = *policy;
-  }
+  if (!o.policy.empty()) options.config.policy = policy_option(o.policy);
   if (o.desired_speed_kmh) options.desired_speed = *o.desired_speed_kmh / 3.6;
   options.avoidance = !o.no_avoidance;
   const sf::loaded_scenario loaded = mm::cli::replay_loaded(recording, options, o.file);

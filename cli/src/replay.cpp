@@ -3,20 +3,16 @@
 #include <string>
 
 #include "mm/cli/commands.hpp"
-#include "mm/commonroad/measure.hpp"
+#include "mm/cli/measure.hpp"
 
 namespace mm::cli {
 
 namespace cr = mm::commonroad;
 
 std::uint32_t default_replay_agent(const cr::scenario& recording) {
-  for (const cr::planning_problem& problem : recording.planning_problems) {
-    if (const auto ego = cr::recorded_ego(recording, problem)) return *ego;
-  }
-  std::string ids;
-  for (std::uint32_t id : cr::measurable_road_users(recording)) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
+  if (const auto ego = planning_problem_ego(recording)) return *ego;
   throw input_error("no planning problem of the file names a recorded road user: give --agent ID, one of: " +
-                    (ids.empty() ? std::string("none") : ids));
+                    measurable_ids(recording));
 }
 
 scenario_file::loaded_scenario replay_loaded(const cr::scenario& recording, const cr::replay_options& options,

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,6 +35,14 @@ struct measure_outcome {
 /// recorded ego, or when `every_road_user` finds none; `commonroad::measure_error` for an id that
 /// cannot be measured).
 std::vector<std::uint32_t> road_users_to_measure(const commonroad::scenario& s, const measure_settings& settings);
+
+/// The road user that replays the ego of the file's first planning problem that has one
+/// (`mm::commonroad::recorded_ego`), or none.
+std::optional<std::uint32_t> planning_problem_ego(const commonroad::scenario& s);
+
+/// The ids of the road users that can be measured (`mm::commonroad::measurable_road_users`), as
+/// "42, 44", or "none": for the messages that ask for `--agent ID`.
+std::string measurable_ids(const commonroad::scenario& s);
 
 /// Measures the road users of the recording `s` (named `name`, the file's stem) at every recorded
 /// step and writes trajectories.csv, map.csv, decisions.csv, summary.json and scene.json into
