@@ -60,16 +60,9 @@ struct run_record {
   std::vector<sim::crash_event> crashes;
 };
 
-py::array_t<double> matrix_of(const std::vector<double>& values, std::size_t columns) {
-  const auto c = static_cast<py::ssize_t>(columns);
-  const auto r = c == 0 ? py::ssize_t{0} : static_cast<py::ssize_t>(values.size()) / c;
-  py::array_t<double> out({r, c});
-  std::copy_n(values.begin(), static_cast<std::size_t>(r * c), out.mutable_data());
-  return out;
-}
-
-template <class T>
-py::array_t<T> matrix_of_codes(const std::vector<std::uint8_t>& values, std::size_t columns) {
+/// `values`, row-major, as a (rows × `columns`) NumPy array of T (no rows when there are no columns).
+template <class T = double, class U>
+py::array_t<T> matrix_of(const std::vector<U>& values, std::size_t columns) {
   const auto c = static_cast<py::ssize_t>(columns);
   const auto r = c == 0 ? py::ssize_t{0} : static_cast<py::ssize_t>(values.size()) / c;
   py::array_t<T> out({r, c});
@@ -392,7 +385,7 @@ void bind_simulation(py::module_& m) {
                              [](const map_record& r) { return matrix_of(r.mi_accelerate, r.forecast_times.size()); },
                              "MI+, shape (steps, forecast times)")
       .def_property_readonly("excluded", [](const map_record& r) {
-        return matrix_of_codes<bool>(r.excluded, r.forecast_times.size());
+        return matrix_of<bool>(r.excluded, r.forecast_times.size());
       }, "τ_i > TTC, shape (steps, forecast times)")
       .def_property_readonly("forecast_time", [](const map_record& r) { return array_of(r.forecast_time); }, "τ̄ [s]")
       .def_property_readonly("selected_family", [](const map_record& r) { return array_of(r.selected_family); },
@@ -434,12 +427,12 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("lateral_offset",
                              [](const run_record& r) { return matrix_of(r.lateral_offset, r.agent_count); }, "[m]")
       .def_property_readonly("status",
-                             [](const run_record& r) { return matrix_of_codes<std::uint8_t>(r.status, r.agent_count); },
+                             [](const run_record& r) { return matrix_of<std::uint8_t>(r.status, r.agent_count); },
                              "int(maneuvermap.sim.agent_status.…)")
       .def_property_readonly("present", [](const run_record& r) {
         std::vector<std::uint8_t> present;
         for (std::uint8_t s : r.status) present.push_back(sim::is_present(static_cast<sim::agent_status>(s)) ? 1 : 0);
-        return matrix_of_codes<bool>(present, r.agent_count);
+        return matrix_of<bool>(present, r.agent_count);
       }, "observed and collidable: the rows of maneuvermap run's trajectories.csv")
       .def_readonly("maps", &run_record::maps, "one per planning vehicle, in id order")
       .def("map", [](const run_record& r, const std::string& agent) {
