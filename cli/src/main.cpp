@@ -43,16 +43,16 @@ void add_scenario_options(CLI::App& command, scenario_options& o, bool with_poli
   command.add_option("--set", o.overrides, "Override a parameter of the scenario: NAME=VALUE (repeatable)")
       ->type_name("NAME=VALUE");
   if (with_policy) {
-    command.add_option("--policy", o.policy, "Forecast policy of every planning vehicle: adj or const:SECONDS")
-        ->type_name("adj|const:SECONDS");
+    command.add_option("--policy", o.policy, "Forecast policy of every planning vehicle: adj, const:SECONDS or robust")
+        ->type_name("adj|const:SECONDS|robust");
     command.add_option("--seed", o.seed, "Seed of the sensor noise (replaces the scenario's)");
   }
 }
 
-/// The value of `--policy`: `adj` or `const:SECONDS`; input_error for anything else.
+/// The value of `--policy`: `adj`, `const:SECONDS` or `robust`; input_error for anything else.
 mm::forecast_policy policy_option(const std::string& text) {
   const std::optional<mm::forecast_policy> policy = sf::parse_policy(text);
-  if (!policy) throw mm::cli::input_error("--policy " + text + ": expected adj or const:SECONDS, e.g. const:1.0");
+  if (!policy) throw mm::cli::input_error("--policy " + text + ": expected adj, const:SECONDS or robust, e.g. const:1.0");
   return *policy;
 }
 
@@ -350,8 +350,8 @@ int main(int argc, char** argv) {
   measure->add_option("--agent", measure_options.agents,
                       "Road user to measure, by obstacle id (repeatable), or all (default: the recorded ego of the planning problem)")
       ->type_name("ID|all");
-  measure->add_option("--policy", measure_options.policy, "Forecast policy: adj (default) or const:SECONDS")
-      ->type_name("adj|const:SECONDS");
+  measure->add_option("--policy", measure_options.policy, "Forecast policy: adj (default), const:SECONDS or robust")
+      ->type_name("adj|const:SECONDS|robust");
   measure->add_option("--out", measure_options.out, "Output directory (default out/<file name without .xml>)")->type_name("DIR");
   measure->add_option("--jobs,-j", measure_options.jobs,
                       "Road users measured at a time (outputs do not depend on it; default: the number of cores)")
@@ -370,8 +370,8 @@ int main(int argc, char** argv) {
                      "The road user to drive (default: the recorded ego of the file's planning problem)")
       ->check(CLI::PositiveNumber)
       ->type_name("ID");
-  replay->add_option("--policy", replay_options.policy, "Forecast policy: adj (default) or const:SECONDS")
-      ->type_name("adj|const:SECONDS");
+  replay->add_option("--policy", replay_options.policy, "Forecast policy: adj (default), const:SECONDS or robust")
+      ->type_name("adj|const:SECONDS|robust");
   replay->add_option("--desired-speed", replay_options.desired_speed_kmh,
                      "Its desired speed in km/h (default: its recorded speed at each moment)")
       ->check(CLI::Range(0.0, 360.0))

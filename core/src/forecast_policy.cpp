@@ -5,7 +5,12 @@
 namespace mm {
 
 std::string_view to_string(forecast_policy_kind kind) {
-  return kind == forecast_policy_kind::adjustable ? "adj" : "const";
+  switch (kind) {
+    case forecast_policy_kind::adjustable: return "adj";
+    case forecast_policy_kind::constant: return "const";
+    case forecast_policy_kind::robust: return "robust";
+  }
+  return "adj";
 }
 
 std::size_t adjustable_forecast_index(std::span<const double> mi_brake, std::span<const double> mi_accelerate,

@@ -83,6 +83,14 @@ class evaluator {
     return c;
   }
 
+  /// The combined set of `parts`, each an (obstacle, forecast index) pair, as `combined` (the robust
+  /// policy's: every obstacle under each of its non-excluded forecast times).
+  clearance_set combined_of(std::span<const std::pair<std::size_t, std::size_t>> parts) {
+    clearance_set c;
+    combined_parts(parts, c);
+    return c;
+  }
+
   /// max(MI−, MI+) with obstacle j alone at forecast index i; `rough` as in `room_of`. Remembered,
   /// with the forecast index of an obstacle whose clearances do not depend on it taken as 0.
   double room_alone(std::size_t j, std::size_t i, bool rough) {
@@ -515,6 +523,9 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     result.selected_family = select_family(1.0, 1.0);
     if (config.policy.kind == forecast_policy_kind::constant) {
       result.forecast_index = constant_forecast_index(taus, config.policy.constant_forecast_time, result.excluded);
+    } else if (config.policy.kind == forecast_policy_kind::robust) {
+      result.robust = true;  // as the general path: safe under every forecast time
+      result.forecast_index = tau_count - 1;
     }
     result.forecast_time = taus[result.forecast_index];
     result.command = nominal;
@@ -657,108 +668,183 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     result.mi_accelerate = mi_accelerate;
   }
 
-  // Forecast times (spec §7, §9).
-  // The fast search climbs by rough rooms (signs only) and ranks the best of what it met by their
-  // rooms; the exhaustive one, the reference, by the rooms alone.
-  problem.room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, false); };
-  if (!options.reference) {
-    problem.rough_room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, true); };
-    problem.rough_room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, true); };
-  }
-  problem.room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, false); };
-
-  if (constant_policy) {
-    // The assignment is fixed above.
-  } else if (n == 1) {
-    assignment[0] = adjustable_forecast_index(mi_brake, mi_accelerate, result.excluded);
-  } else if (n > 1) {
-    if (options.assignment_search == assignment_search_kind::exhaustive) {
-      // An obstacle that does not turn (ω = 0) has the same forecast under every τ: assignments that
-      // differ only in its forecast time have the same room, and the tie rule (the smallest index
-      // vector) puts it at τ = 0. Searching that alone gives the same result (eight pedestrians:
-      // one assignment instead of 17⁸).
-      for (std::size_t j = 0; j < n; ++j) {
-        if (relevant[j].motion.yaw_rate == 0.0) problem.candidates[j] = {0};
+  // The robust policy (docs/method.md, "The robust policy"): the maneuvers safe with every obstacle
+  // under each of its non-excluded forecast times, one set; ADJ below when none of them is safe and
+  // verified. An obstacle whose forecast does not depend on τ (fast path: inert or not turning)
+  // counts once.
+  sample_mask colliding;
+  bool robust_decided = false;
+  if (config.policy.kind == forecast_policy_kind::robust) {
+    std::vector<std::pair<std::size_t, std::size_t>> parts;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (!evaluate.forecast_matters(j)) {
+        parts.emplace_back(j, 0);
+        continue;
       }
-      const std::size_t count = assignment_count(problem);
-      if (count > config.max_exhaustive_assignments) {
-        return invalid("config.max_exhaustive_assignments = " + std::to_string(config.max_exhaustive_assignments) +
-                       ": the exhaustive forecast-time search over " + std::to_string(n) + " obstacles needs " +
-                       std::to_string(count) + " assignments; raise the limit or use the coordinate-ascent search");
-      }
-      assignment = exhaustive_assignment_search(problem).forecast_index;
-    } else {
-      // An obstacle that collides with no maneuver under any of its forecast times leaves the safe
-      // sets (spec §9), and every room (each obstacle is interpolated on its own, and one without a
-      // collision is not read), the same whatever its forecast time: the fast search holds it at τ = 0.
-      // So does an obstacle that does not turn, whose clearances are the same under every forecast
-      // time: τ = 0 is where the exhaustive search's tie rule (the smallest index vector) puts it.
-      for (std::size_t j = 0; j < n; ++j) {
-        if (!evaluate.forecast_matters(j) || !evaluate.collides_under_any(j, problem.candidates[j])) {
-          problem.candidates[j] = {0};
+      for (const std::size_t i : problem.candidates[j]) parts.emplace_back(j, i);
+    }
+    const clearance_set every = evaluate.combined_of(parts);
+    const sample_mask robust_colliding = evaluate.colliding(every);
+    const maneuverability_pair mi = evaluate.indices(every);
+    std::vector<forecast_obstacle> those;
+    std::vector<double> those_tau;
+    choice_input choice;
+    choice.samples = &samples;
+    choice.colliding = &robust_colliding;
+    choice.selected_family = select_family(mi.brake, mi.accelerate);
+    choice.nominal = nominal;
+    // Proven collision-free in continuous time under each forecast time, with the obstacles that
+    // may be forecast with it (a forecast that does not turn is the same under every τ: once).
+    choice.verify = [&](const maneuver& u) {
+      for (std::size_t i = 0; i < tau_count; ++i) {
+        those.clear();
+        those_tau.clear();
+        for (std::size_t j = 0; j < n; ++j) {
+          const std::vector<std::size_t>& allowed = problem.candidates[j];
+          if (i > 0 && relevant[j].motion.yaw_rate == 0.0) continue;
+          if (!std::binary_search(allowed.begin(), allowed.end(), i)) continue;
+          those.push_back(relevant[j]);
+          those_tau.push_back(taus[i]);
         }
+        if (those.empty()) continue;
+        const bool free = options.reference ? verified_collision_free_reference(ego, u, those, those_tau, window,
+                                                                                verification_resolution)
+                                            : verified_collision_free(ego, u, those, those_tau, window,
+                                                                      verification_resolution);
+        if (!free) return false;
       }
-      assignment = coordinate_ascent_assignment_search(problem).forecast_index;
+      return true;
+    };
+    choice.nominal_safe = choice.verify(nominal);
+    choice.initial_speed = ego.speed;
+    choice.weights = config.effort;
+    choice.urgent_steering = config.urgent_steering;
+    if (const auto decision = choose_maneuver(choice)) {
+      robust_decided = true;
+      colliding = robust_colliding;
+      result.robust = true;
+      result.command = decision->command;
+      result.mode = decision->mode;
+      result.mi_brake_selected = mi.brake;
+      result.mi_accelerate_selected = mi.accelerate;
+      result.selected_family = choice.selected_family;
+      for (std::size_t j = 0; j < n; ++j) {
+        result.obstacles[relevant_track[j]].forecast_index = problem.candidates[j].back();
+      }
+      if (n == 0) {
+        result.forecast_index = tau_count - 1;  // nothing to exclude: safe under every forecast time
+      } else {
+        const auto most_urgent = static_cast<std::size_t>(std::min_element(ttc.begin(), ttc.end()) - ttc.begin());
+        result.forecast_index = problem.candidates[most_urgent].back();
+      }
+      result.forecast_time = taus[result.forecast_index];
     }
   }
-  const clearance_set assigned = evaluate.combined(assignment);
-  const sample_mask colliding = evaluate.colliding(assigned);
-  const maneuverability_pair selected = evaluate.indices(assigned);
-  result.mi_brake_selected = selected.brake;
-  result.mi_accelerate_selected = selected.accelerate;
-  result.selected_family = select_family(selected.brake, selected.accelerate);
-  if (n > 0) {
-    const auto most_urgent = static_cast<std::size_t>(std::min_element(ttc.begin(), ttc.end()) - ttc.begin());
-    result.forecast_index = assignment[most_urgent];
-  } else if (config.policy.kind == forecast_policy_kind::constant) {
-    result.forecast_index = constant_forecast_index(taus, config.policy.constant_forecast_time, result.excluded);
-  }
-  result.forecast_time = taus[result.forecast_index];
-  for (std::size_t j = 0; j < n; ++j) result.obstacles[relevant_track[j]].forecast_index = assignment[j];
 
-  // The maneuver (spec §8).
-  std::vector<double> assigned_tau(n);
-  for (std::size_t j = 0; j < n; ++j) assigned_tau[j] = taus[assignment[j]];
-  choice_input choice;
-  choice.samples = &samples;
-  choice.colliding = &colliding;
-  choice.selected_family = result.selected_family;
-  choice.nominal = nominal;
-  // Safe means collision-free in continuous time, not only at the sample times: a minimal-effort
-  // choice lies at the edge of the safe set, where a corner can clip between samples.
-  choice.verify = [&](const maneuver& u) {
-    return options.reference
-               ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
-               : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
-  };
-  choice.nominal_safe = choice.verify(nominal);
-  choice.initial_speed = ego.speed;
-  choice.weights = config.effort;
-  choice.urgent_steering = config.urgent_steering;
-  if (const auto decision = choose_maneuver(choice)) {
-    result.command = decision->command;
-    result.mode = decision->mode;
-  } else {
-    std::vector<double> first_collision;
-    if (options.reference) {
-      first_collision = first_collision_times(ego, samples.maneuvers, relevant, assigned_tau, window);
-    } else {
-      // When each maneuver first overlaps an obstacle, from the raster of each obstacle's assigned
-      // forecast time (the collisions' own test, recorded when it hits).
-      first_collision.assign(samples.size(), no_collision);
-      for (std::size_t j = 0; j < n; ++j) {  // n > 0: there is a sweep
-        std::vector<std::uint8_t> only(tau_count, 0);
-        only[assignment[j]] = 1;
-        const clearance_field field(*sweep, relevant[j], taus, clearance_cap, only, raster,
-                                    clearance_field::recording::first_overlaps);
-        for (std::size_t m = 0; m < samples.size(); ++m) {
-          first_collision[m] = std::min(first_collision[m], field.first_overlap(assignment[j], m));
+  if (!robust_decided) {
+    // Forecast times (spec §7, §9).
+    // The fast search climbs by rough rooms (signs only) and ranks the best of what it met by their
+    // rooms; the exhaustive one, the reference, by the rooms alone.
+    problem.room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, false); };
+    if (!options.reference) {
+      problem.rough_room = [&](std::span<const std::size_t> index) { return evaluate.room_of(index, true); };
+      problem.rough_room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, true); };
+    }
+    problem.room_alone = [&](std::size_t j, std::size_t i) { return evaluate.room_alone(j, i, false); };
+
+    if (constant_policy) {
+      // The assignment is fixed above.
+    } else if (n == 1) {
+      assignment[0] = adjustable_forecast_index(mi_brake, mi_accelerate, result.excluded);
+    } else if (n > 1) {
+      if (options.assignment_search == assignment_search_kind::exhaustive) {
+        // An obstacle that does not turn (ω = 0) has the same forecast under every τ: assignments that
+        // differ only in its forecast time have the same room, and the tie rule (the smallest index
+        // vector) puts it at τ = 0. Searching that alone gives the same result (eight pedestrians:
+        // one assignment instead of 17⁸).
+        for (std::size_t j = 0; j < n; ++j) {
+          if (relevant[j].motion.yaw_rate == 0.0) problem.candidates[j] = {0};
         }
+        const std::size_t count = assignment_count(problem);
+        if (count > config.max_exhaustive_assignments) {
+          return invalid("config.max_exhaustive_assignments = " + std::to_string(config.max_exhaustive_assignments) +
+                         ": the exhaustive forecast-time search over " + std::to_string(n) + " obstacles needs " +
+                         std::to_string(count) + " assignments; raise the limit or use the coordinate-ascent search");
+        }
+        assignment = exhaustive_assignment_search(problem).forecast_index;
+      } else {
+        // An obstacle that collides with no maneuver under any of its forecast times leaves the safe
+        // sets (spec §9), and every room (each obstacle is interpolated on its own, and one without a
+        // collision is not read), the same whatever its forecast time: the fast search holds it at τ = 0.
+        // So does an obstacle that does not turn, whose clearances are the same under every forecast
+        // time: τ = 0 is where the exhaustive search's tie rule (the smallest index vector) puts it.
+        for (std::size_t j = 0; j < n; ++j) {
+          if (!evaluate.forecast_matters(j) || !evaluate.collides_under_any(j, problem.candidates[j])) {
+            problem.candidates[j] = {0};
+          }
+        }
+        assignment = coordinate_ascent_assignment_search(problem).forecast_index;
       }
     }
-    const maneuver_decision last_resort = near_crash_maneuver(samples, first_collision, nominal.curvature);
-    result.command = last_resort.command;
-    result.mode = last_resort.mode;
+    const clearance_set assigned = evaluate.combined(assignment);
+    colliding = evaluate.colliding(assigned);
+    const maneuverability_pair selected = evaluate.indices(assigned);
+    result.mi_brake_selected = selected.brake;
+    result.mi_accelerate_selected = selected.accelerate;
+    result.selected_family = select_family(selected.brake, selected.accelerate);
+    if (n > 0) {
+      const auto most_urgent = static_cast<std::size_t>(std::min_element(ttc.begin(), ttc.end()) - ttc.begin());
+      result.forecast_index = assignment[most_urgent];
+    } else if (config.policy.kind == forecast_policy_kind::constant) {
+      result.forecast_index = constant_forecast_index(taus, config.policy.constant_forecast_time, result.excluded);
+    }
+    result.forecast_time = taus[result.forecast_index];
+    for (std::size_t j = 0; j < n; ++j) result.obstacles[relevant_track[j]].forecast_index = assignment[j];
+
+    // The maneuver (spec §8).
+    std::vector<double> assigned_tau(n);
+    for (std::size_t j = 0; j < n; ++j) assigned_tau[j] = taus[assignment[j]];
+    choice_input choice;
+    choice.samples = &samples;
+    choice.colliding = &colliding;
+    choice.selected_family = result.selected_family;
+    choice.nominal = nominal;
+    // Safe means collision-free in continuous time, not only at the sample times: a minimal-effort
+    // choice lies at the edge of the safe set, where a corner can clip between samples.
+    choice.verify = [&](const maneuver& u) {
+      return options.reference
+                 ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
+                 : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
+    };
+    choice.nominal_safe = choice.verify(nominal);
+    choice.initial_speed = ego.speed;
+    choice.weights = config.effort;
+    choice.urgent_steering = config.urgent_steering;
+    if (const auto decision = choose_maneuver(choice)) {
+      result.command = decision->command;
+      result.mode = decision->mode;
+    } else {
+      std::vector<double> first_collision;
+      if (options.reference) {
+        first_collision = first_collision_times(ego, samples.maneuvers, relevant, assigned_tau, window);
+      } else {
+        // When each maneuver first overlaps an obstacle, from the raster of each obstacle's assigned
+        // forecast time (the collisions' own test, recorded when it hits).
+        first_collision.assign(samples.size(), no_collision);
+        for (std::size_t j = 0; j < n; ++j) {  // n > 0: there is a sweep
+          std::vector<std::uint8_t> only(tau_count, 0);
+          only[assignment[j]] = 1;
+          const clearance_field field(*sweep, relevant[j], taus, clearance_cap, only, raster,
+                                      clearance_field::recording::first_overlaps);
+          for (std::size_t m = 0; m < samples.size(); ++m) {
+            first_collision[m] = std::min(first_collision[m], field.first_overlap(assignment[j], m));
+          }
+        }
+      }
+      const maneuver_decision last_resort = near_crash_maneuver(samples, first_collision, nominal.curvature);
+      result.command = last_resort.command;
+      result.mode = last_resort.mode;
+    }
   }
 
   result.work.relevant_obstacles = n;

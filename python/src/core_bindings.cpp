@@ -156,17 +156,19 @@ void bind_motion(py::module_& m) {
 void bind_config(py::module_& m) {
   py::enum_<forecast_policy_kind>(m, "forecast_policy_kind")
       .value("adjustable", forecast_policy_kind::adjustable)
-      .value("constant", forecast_policy_kind::constant);
-  py::class_<forecast_policy> f(m, "forecast_policy", "ADJ or a constant forecast time τ (spec §7).");
+      .value("constant", forecast_policy_kind::constant)
+      .value("robust", forecast_policy_kind::robust);
+  py::class_<forecast_policy> f(m, "forecast_policy",
+                                "ADJ, a constant forecast time τ (spec §7), or robust (docs/method.md).");
   with_fields(f)
       .def_readwrite("kind", &forecast_policy::kind)
       .def_readwrite("constant_forecast_time", &forecast_policy::constant_forecast_time,
                      "τ [s] of the constant policy, on the forecast grid")
       .def_static("parse", [](const std::string& text) {
             const auto policy = scenario_file::parse_policy(text);
-            if (!policy) throw py::value_error("forecast policy '" + text + "': expected adj or const:SECONDS");
+            if (!policy) throw py::value_error("forecast policy '" + text + "': expected adj, const:SECONDS or robust");
             return *policy;
-          }, py::arg("text"), "From `adj` or `const:SECONDS`, as on the command line.")
+          }, py::arg("text"), "From `adj`, `const:SECONDS` or `robust`, as on the command line.")
       .def("__str__", [](const forecast_policy& policy) { return scenario_file::policy_name(policy); });
 
   py::class_<effort_weights> w(m, "effort_weights", "w_lon, w_lat of the effort J (spec §8) [s⁴/m²].");
@@ -280,6 +282,8 @@ void bind_result(py::module_& m) {
       .def_readonly("command", &plan_result::command, "the chosen u")
       .def_readonly("mode", &plan_result::mode, "which rule of spec §8 chose it")
       .def_readonly("selected_family", &plan_result::selected_family, "spec §7")
+      .def_readonly("robust", &plan_result::robust,
+                    "robust policy: the command is safe under every non-excluded forecast time (else ADJ decided)")
       .def_readonly("forecast_time", &plan_result::forecast_time, "τ̄ [s]")
       .def_readonly("forecast_index", &plan_result::forecast_index, "ī")
       .def_readonly("mi_brake_selected", &plan_result::mi_brake_selected, "MI− under the selected forecast times")

@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cerrno>
 #include <charconv>
@@ -360,8 +361,9 @@ class mapper {
              "max_time_step_s", "effort_weights", "assignment_search", "max_exhaustive_assignments"});
     mm::planner_config c;
     if (auto f = v.get("policy")) {
-      c.policy.kind = read_choice(ctx_, *f, {"adj", "const"}) == 0 ? mm::forecast_policy_kind::adjustable
-                                                                   : mm::forecast_policy_kind::constant;
+      constexpr std::array kinds{mm::forecast_policy_kind::adjustable, mm::forecast_policy_kind::constant,
+                                 mm::forecast_policy_kind::robust};
+      c.policy.kind = kinds.at(read_choice(ctx_, *f, {"adj", "const", "robust"}));
     }
     c.policy.constant_forecast_time = v.quantity_or("forecast_time", {seconds}, c.policy.constant_forecast_time, range::non_negative);
     c.safety_margin = v.quantity_or("safety_margin", {metres}, c.safety_margin, range::non_negative);
@@ -763,6 +765,7 @@ loaded_scenario load(std::string_view file_or_builtin, const load_options& optio
 
 std::optional<mm::forecast_policy> parse_policy(std::string_view text) {
   if (text == "adj") return mm::forecast_policy{mm::forecast_policy_kind::adjustable, 1.0};
+  if (text == "robust") return mm::forecast_policy{mm::forecast_policy_kind::robust, 1.0};
   constexpr std::string_view prefix = "const:";
   if (text.substr(0, prefix.size()) != prefix) return std::nullopt;
   const std::string_view number = text.substr(prefix.size());
@@ -776,6 +779,7 @@ std::optional<mm::forecast_policy> parse_policy(std::string_view text) {
 
 std::string policy_name(const mm::forecast_policy& policy) {
   if (policy.kind == mm::forecast_policy_kind::adjustable) return "adj";
+  if (policy.kind == mm::forecast_policy_kind::robust) return "robust";
   return "const:" + number_text(policy.constant_forecast_time);
 }
 

@@ -79,7 +79,7 @@ TEST(maneuvermap, an_unknown_scenario_exits_2_and_suggests_a_built_in) {
 TEST(maneuvermap, bad_option_values_exit_2) {
   const result policy = run("run s1-crossing --policy sideways", "bad_policy");
   EXPECT_EQ(policy.code, 2);
-  EXPECT_TRUE(contains(policy.err, "--policy sideways: expected adj or const:SECONDS")) << policy.err;
+  EXPECT_TRUE(contains(policy.err, "--policy sideways: expected adj, const:SECONDS or robust")) << policy.err;
   EXPECT_EQ(run("run s1-crossing --policy const:0.3", "off_grid_policy").code, 2);
   EXPECT_EQ(run("run s1-crossing --seed minus", "bad_seed").code, 2);
   EXPECT_EQ(run("run s1-crossing --set a_kmh", "bad_set").code, 2);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <nlohmann/json.hpp>
 
 #include "cli/support.hpp"
@@ -25,9 +26,11 @@ struct finished_run {
 };
 
 finished_run run_builtin(const std::string& name, const std::string& dir_name,
-                         std::vector<std::pair<std::string, double>> overrides = {}) {
+                         std::vector<std::pair<std::string, double>> overrides = {},
+                         std::optional<mm::forecast_policy> policy = std::nullopt) {
   sf::load_options options;
   options.overrides = std::move(overrides);
+  options.policy = policy;
   const sf::loaded_scenario loaded = sf::load(name, options);
   const temp_dir dir(dir_name);
   run_settings settings;
@@ -128,6 +131,23 @@ TEST(builtin_scenarios, s3_b_turns_too_late_for_a_to_stop_and_a_hits_it_slower) 
     }
   }
   EXPECT_LT(*m.speed_kmh, 30.0 - 5.0);  // measured 19 km/h
+}
+
+TEST(builtin_scenarios, s3_with_two_seconds_of_visible_turn_adj_crashes_and_the_robust_policy_avoids) {
+  // The reproduction's sensitivity study (docs/reproduction.md): B turns from 14 m to A's left, its
+  // turn visible for 2.3 s. ADJ keeps trusting the straight-line forecast, which leaves room until
+  // too late; the robust policy acts on the forecasts that trust B's turn, and passes in front.
+  const std::string file = std::string(MM_SOURCE_DIR) + "/sweeps/s3-variants/s3-left-turn-offset-14m.yaml";
+  const std::vector<std::pair<std::string, double>> cell{{"a_kmh", 40.0}, {"b_kmh", 35.0}};
+  const finished_run adj = run_builtin(file, "s3_offset_adj", cell, sf::parse_policy("adj"));
+  EXPECT_TRUE(adj.outcome.metrics.at(0).crash);
+  const finished_run robust = run_builtin(file, "s3_offset_robust", cell, sf::parse_policy("robust"));
+  const mm::sim::run_metrics& m = robust.outcome.metrics.at(0);
+  EXPECT_FALSE(m.crash);
+  EXPECT_EQ(m.closest_agent, "B");
+  EXPECT_GT(*m.min_dist_m, 0.05);  // measured 0.21 m
+  EXPECT_EQ(m.bypass, mm::sim::bypass_side::right);
+  EXPECT_EQ(robust.summary["policy"], "robust");
 }
 
 // --- S4 ----------------------------------------------------------------------------------------

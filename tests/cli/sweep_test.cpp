@@ -219,7 +219,7 @@ TEST(sweep_file, parameters_must_be_the_scenario_own_with_distinct_finite_values
 }
 
 TEST(sweep_file, policies_repetitions_seed_agent_and_keep_runs_are_checked) {
-  expect_error("policies: [adj, const:fast]\n", 4, {"policies[1] = \"const:fast\": expected adj or const:SECONDS"});
+  expect_error("policies: [adj, const:fast]\n", 4, {"policies[1] = \"const:fast\": expected adj, const:SECONDS or robust"});
   expect_error("policies: [const:1, const:1.0]\n", 4, {"policies[1] = \"const:1.0\": duplicate policy"});
   expect_error("policies: []\n", 4, {"policies = <a list>: expected a non-empty list"});
   expect_error("repetitions: 0\n", 4, {"repetitions = 0: expected an integer from 1 to 1000000"});

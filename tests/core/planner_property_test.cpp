@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <cmath>
 #include <span>
@@ -26,8 +27,11 @@ plan_input random_setting(std::mt19937_64& rng) {
   options.obstacles = static_cast<std::size_t>(obstacles(rng));
   options.sensor_noise = unit(rng) < 0.5;
   plan_input in = testing::random_scene(rng, options);
-  if (unit(rng) < 0.4) {
+  const double policy = unit(rng);
+  if (policy < 0.4) {
     in.config.policy = {forecast_policy_kind::constant, 0.5 * std::floor(unit(rng) * 5.0)};
+  } else if (policy < 0.6) {
+    in.config.policy.kind = forecast_policy_kind::robust;
   }
   in.config.urgent_steering = unit(rng) < 0.3;
   in.config.safety_margin = unit(rng) < 0.3 ? 0.5 * unit(rng) : 0.0;
@@ -101,6 +105,7 @@ void expect_same_decision(const plan_result& a, const plan_result& b) {
   EXPECT_EQ(a.selected_family, b.selected_family);
   EXPECT_EQ(a.mi_brake_selected, b.mi_brake_selected);
   EXPECT_EQ(a.mi_accelerate_selected, b.mi_accelerate_selected);
+  EXPECT_EQ(a.robust, b.robust);
   EXPECT_EQ(a.excluded, b.excluded);
   EXPECT_EQ(a.time_to_collision, b.time_to_collision);
   ASSERT_EQ(a.obstacles.size(), b.obstacles.size());
@@ -280,6 +285,71 @@ TEST(planner_properties, the_fast_indices_of_several_obstacles_are_the_union_ind
     }
   }
   EXPECT_GT(several, count / 4) << "most scenes must have several relevant obstacles";
+}
+
+TEST(planner_properties, the_robust_command_is_safe_under_every_non_excluded_forecast_time_or_adj_s_own) {
+  std::mt19937_64 rng(testing::property_seed() + 71);
+  const std::size_t count = testing::property_count(80);
+  std::size_t robust = 0;
+  std::size_t differs = 0;
+  std::size_t fallbacks = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    plan_input in = testing::random_scene(rng, {1 + trial % 3, trial % 2 == 1});
+    in.config.policy.kind = forecast_policy_kind::robust;
+    const plan_result r = plan(in);
+    in.config.policy.kind = forecast_policy_kind::adjustable;
+    const plan_result adj = plan(in);
+    SCOPED_TRACE("failing input (robust policy):\n" + testing::describe(in));
+    ASSERT_TRUE(r.ok() && adj.ok()) << r.error;
+    if (!r.robust) {
+      ++fallbacks;
+      expect_same_decision(r, adj);
+      continue;
+    }
+    ++robust;
+    differs += r.command == adj.command ? 0 : 1;
+    // Proven free in continuous time, so it overlaps no obstacle at any time of a fine grid.
+    const collision_window fine{in.config.displacement_horizon, in.config.collision_window, 1e-3,
+                                in.config.safety_margin};
+    for (std::size_t j = 0; j < in.obstacles.size(); ++j) {
+      const obstacle_assessment& o = r.obstacles[j];
+      if (!o.relevant) continue;
+      const std::array<forecast_obstacle, 1> alone{forecast_obstacle{o.motion, in.obstacles[j].shape}};
+      for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+        if (i > 0 && r.forecast_times[i] > o.time_to_collision) continue;  // excluded for this obstacle
+        const std::array<double, 1> tau{r.forecast_times[i]};
+        EXPECT_EQ(first_collision_time_reference(in.ego, r.command, alone, tau, fine), no_collision)
+            << "obstacle " << j << " under tau " << tau[0];
+      }
+    }
+  }
+  std::printf("robust policy: %zu of %zu decided on the robust sets (%zu unlike ADJ), %zu by ADJ\n", robust, count,
+              differs, fallbacks);
+  EXPECT_GT(differs, count / 20) << "the robust policy must differ from ADJ on some scenes";
+  EXPECT_GT(robust, count / 4);
+}
+
+TEST(planner_properties, the_robust_indices_agree_with_the_reference_within_the_accuracy_bound) {
+  std::mt19937_64 rng(testing::property_seed() + 83);
+  const std::size_t count = testing::property_count(12);
+  std::size_t compared = 0;
+  double worst = 0.0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    plan_input in = testing::random_scene(rng, {1, trial % 2 == 1});
+    in.config.policy.kind = forecast_policy_kind::robust;
+    const plan_result fast = plan(in);
+    const plan_result reference = plan_reference(in);
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    ASSERT_TRUE(fast.ok() && reference.ok());
+    if (!fast.robust || !reference.robust) continue;  // ADJ decided: compared by the other tests
+    ++compared;
+    EXPECT_NEAR(fast.mi_brake_selected, reference.mi_brake_selected, 0.02);
+    EXPECT_NEAR(fast.mi_accelerate_selected, reference.mi_accelerate_selected, 0.02);
+    worst = std::max({worst, std::abs(fast.mi_brake_selected - reference.mi_brake_selected),
+                      std::abs(fast.mi_accelerate_selected - reference.mi_accelerate_selected)});
+  }
+  EXPECT_GT(compared, count / 2);
+  std::printf("largest robust |MI_fast - MI_reference| over %zu scenes: %.4f\n", compared, worst);
 }
 
 TEST(planner_properties, a_slow_ego_s_indices_agree_with_the_reference_within_the_accuracy_bound) {

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
@@ -373,6 +374,122 @@ TEST(planner, constant_policy_uses_its_forecast_time_unless_it_exceeds_the_time_
   ASSERT_LT(r.time_to_collision, 2.0);
   EXPECT_LE(r.forecast_time, r.time_to_collision);
   EXPECT_GT(r.forecast_time, r.time_to_collision - 0.125);
+}
+
+/// The ego at 40 km/h and a car 20 m ahead, `lateral` m to its side, heading north-west at 9 m/s
+/// and turning at `yaw_rate`: its forecasts differ from one forecast time to the next.
+plan_input turning_car_ahead(double lateral, double yaw_rate, forecast_policy_kind policy) {
+  plan_input in = ego_only(40.0 / 3.6);
+  const pose at{{20.0, lateral}, 0.75 * pi};
+  obstacle_track track;
+  track.id = 1;
+  track.history = {{in.time, at, 9.0}};
+  track.motion = motion_estimate{at, 9.0, yaw_rate};
+  in.obstacles.push_back(track);
+  in.config.policy.kind = policy;
+  return in;
+}
+
+/// True when `u` is proven collision-free with the one obstacle of `r` under forecast time τ_i.
+bool free_under(const plan_input& in, const plan_result& r, const maneuver& u, std::size_t i) {
+  const std::array<forecast_obstacle, 1> obstacle{forecast_obstacle{r.obstacles[0].motion, in.obstacles[0].shape}};
+  const std::array<double, 1> tau{r.forecast_times[i]};
+  const collision_window window{in.config.displacement_horizon, in.config.collision_window, r.collision_time_step,
+                                in.config.safety_margin};
+  return verified_collision_free_reference(in.ego, u, obstacle, tau, window);
+}
+
+TEST(planner, the_robust_policy_avoids_what_a_turn_forecast_by_any_non_excluded_forecast_time_would_hit) {
+  // ADJ trusts the straight-line forecast (τ̄ = 0), under which going straight is safe; the robust
+  // policy leaves it, for a maneuver safe under every forecast time up to TTC.
+  const plan_input adj_in = turning_car_ahead(-3.0, 0.3, forecast_policy_kind::adjustable);
+  const plan_result adj = plan(adj_in);
+  ASSERT_TRUE(adj.ok()) << adj.error;
+  EXPECT_EQ(adj.mode, planning_mode::nominal);
+  EXPECT_FALSE(adj.robust);
+  const plan_input in = turning_car_ahead(-3.0, 0.3, forecast_policy_kind::robust);
+  const plan_result r = plan(in);
+  ASSERT_TRUE(r.ok()) << r.error;
+  ASSERT_TRUE(r.robust);
+  EXPECT_EQ(r.mode, planning_mode::avoid);
+  EXPECT_NE(r.command, adj.command);
+  std::size_t checked = 0;
+  for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+    if (r.excluded[i] != 0) continue;
+    EXPECT_TRUE(free_under(in, r, r.command, i)) << "tau " << r.forecast_times[i];
+    // The robust sets lie inside every non-excluded forecast time's.
+    EXPECT_LE(r.mi_brake_selected, r.mi_brake[i] + 1e-12) << "tau " << r.forecast_times[i];
+    EXPECT_LE(r.mi_accelerate_selected, r.mi_accelerate[i] + 1e-12) << "tau " << r.forecast_times[i];
+    ++checked;
+  }
+  EXPECT_GT(checked, 4u);
+  EXPECT_FALSE(free_under(in, r, in.nominal, r.forecast_index)) << "going straight hits the turning car";
+  // τ̄ reports the largest forecast time the command is safe under: the last one not excluded.
+  EXPECT_EQ(r.excluded[r.forecast_index], 0);
+  ASSERT_LT(r.forecast_index + 1, r.forecast_times.size());
+  EXPECT_NE(r.excluded[r.forecast_index + 1], 0);
+}
+
+TEST(planner, the_robust_policy_s_safe_samples_are_those_safe_under_every_non_excluded_forecast_time) {
+  for (const bool reference : {false, true}) {
+    plan_input in = turning_car_ahead(-3.0, 0.3, forecast_policy_kind::robust);
+    in.config.record_samples = true;
+    in.config.resolution = {11, 15};
+    const plan_result r = reference ? plan_reference(in, {{11, 15}}) : plan(in);
+    ASSERT_TRUE(r.ok() && r.samples) << r.error;
+    ASSERT_TRUE(r.robust);
+    const sample_snapshot& s = *r.samples;
+    std::size_t safe = 0;
+    std::size_t unsafe_under_some = 0;
+    for (std::size_t m = 0; m < s.maneuvers.size(); ++m) {
+      bool under_every = true;
+      bool under_some = false;
+      for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+        if (r.excluded[i] != 0) continue;
+        under_every = under_every && s.safe_by_forecast[i][m] != 0;
+        under_some = under_some || s.safe_by_forecast[i][m] != 0;
+      }
+      EXPECT_EQ(s.safe_selected[m] != 0, under_every) << (reference ? "reference" : "fast") << ", sample " << m;
+      safe += under_every ? 1 : 0;
+      unsafe_under_some += under_some && !under_every ? 1 : 0;
+    }
+    EXPECT_GT(safe, 0u);
+    EXPECT_GT(unsafe_under_some, 10u) << "the forecast times must disagree for this test to mean anything";
+  }
+}
+
+TEST(planner, the_robust_policy_falls_back_to_adj_when_no_maneuver_is_safe_under_every_forecast_time) {
+  const plan_result adj = plan(turning_car_ahead(-6.0, 0.6, forecast_policy_kind::adjustable));
+  const plan_result r = plan(turning_car_ahead(-6.0, 0.6, forecast_policy_kind::robust));
+  ASSERT_TRUE(r.ok() && adj.ok());
+  EXPECT_FALSE(r.robust);
+  EXPECT_EQ(r.mode, planning_mode::avoid) << "ADJ still finds room under one forecast time";
+  EXPECT_EQ(r.command, adj.command);
+  EXPECT_EQ(r.mode, adj.mode);
+  EXPECT_EQ(r.forecast_index, adj.forecast_index);
+  EXPECT_EQ(r.mi_brake_selected, adj.mi_brake_selected);
+  EXPECT_EQ(r.mi_accelerate_selected, adj.mi_accelerate_selected);
+  EXPECT_EQ(r.mi_brake, adj.mi_brake);
+}
+
+TEST(planner, the_robust_policy_decides_as_adj_against_an_obstacle_that_does_not_turn) {
+  // Every forecast time gives the same forecast: the robust sets are ADJ's, only τ̄ differs.
+  const plan_result adj = plan(turning_car_ahead(-3.0, 0.0, forecast_policy_kind::adjustable));
+  const plan_result r = plan(turning_car_ahead(-3.0, 0.0, forecast_policy_kind::robust));
+  ASSERT_TRUE(r.ok() && adj.ok());
+  ASSERT_TRUE(r.robust);
+  EXPECT_EQ(r.command, adj.command);
+  EXPECT_EQ(r.mode, adj.mode);
+  EXPECT_EQ(r.selected_family, adj.selected_family);
+  EXPECT_EQ(r.mi_brake_selected, adj.mi_brake_selected);
+  EXPECT_EQ(r.mi_accelerate_selected, adj.mi_accelerate_selected);
+  // Without obstacles the nominal maneuver is safe under every forecast time, 0 to 2 s.
+  plan_input alone = ego_only(10.0);
+  alone.config.policy.kind = forecast_policy_kind::robust;
+  const plan_result free = plan(alone);
+  EXPECT_TRUE(free.robust);
+  EXPECT_EQ(free.mode, planning_mode::nominal);
+  EXPECT_EQ(free.forecast_time, 2.0);
 }
 
 TEST(planner, recorded_samples_describe_the_sets_the_reference_indices_were_computed_from) {

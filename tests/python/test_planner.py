@@ -32,6 +32,23 @@ def test_the_crossing_scene_agrees_with_the_reference_planner_within_the_bound_o
     assert 0.0 < fast.mi_brake_selected < 1.0
 
 
+def test_the_robust_policy_leaves_what_a_turn_would_hit_where_adj_trusts_the_straight_forecast():
+    at = mm.pose(20.0, -3.0, 0.75 * math.pi)  # 20 m ahead, heading north-west, turning
+    turning = mm.obstacle_track(id=1, history=[mm.observation(1.0, at, 9.0)],
+                                motion=mm.motion_estimate(pose=at, speed=9.0, yaw_rate=0.3))
+    results = {}
+    for policy in ("adj", "robust"):
+        config = mm.planner_config(policy=mm.forecast_policy.parse(policy))
+        results[policy] = mm.plan(mm.plan_input(time=1.0, ego=mm.ego_state(speed=40.0 / 3.6), obstacles=[turning],
+                                                config=config))
+    adj, robust = results["adj"], results["robust"]
+    assert (adj.mode, adj.robust, adj.forecast_time) == (mm.planning_mode.nominal, False, 0.0)
+    assert robust.robust and robust.mode == mm.planning_mode.avoid
+    allowed = ~robust.excluded.astype(bool)
+    assert robust.mi_brake_selected <= robust.mi_brake[allowed].min()
+    assert robust.forecast_time == robust.forecast_times[allowed].max()
+
+
 def test_the_map_column_excludes_exactly_the_forecast_times_after_the_time_to_collision():
     result = mm.plan(crossing_scene())
     np.testing.assert_array_equal(result.forecast_times, np.arange(17) * 0.125)
@@ -156,5 +173,7 @@ def test_the_motion_models_are_those_of_the_spec():
 def test_a_policy_parses_as_on_the_command_line():
     assert str(mm.forecast_policy.parse("const:0.5")) == "const:0.5"
     assert mm.forecast_policy.parse("adj").kind == mm.forecast_policy_kind.adjustable
-    with pytest.raises(ValueError, match="expected adj or const:SECONDS"):
+    assert mm.forecast_policy.parse("robust").kind == mm.forecast_policy_kind.robust
+    assert str(mm.forecast_policy.parse("robust")) == "robust"
+    with pytest.raises(ValueError, match="expected adj, const:SECONDS or robust"):
         mm.forecast_policy.parse("sometimes")

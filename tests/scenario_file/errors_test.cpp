@@ -122,7 +122,7 @@ const std::vector<error_case> cases{
      {"parameters cannot refer to other parameters"}},
     {"bad parameter name", with_line(4, "  3d: 30"), 4, "parameters.3d", {"letters, digits and _"}},
     {"bad enum with a suggestion", with_line(13, "    desired_speed_kmh: 30\n    planner: {policy: adjj}"), 14,
-     "agents[0].planner.policy", {"= adjj", "expected one of adj, const (did you mean adj?)"}},
+     "agents[0].planner.policy", {"= adjj", "expected one of adj, const, robust (did you mean adj?)"}},
     {"bad kind", with_line(8, "    kind: car"), 8, "agents[0].kind",
      {"= car", "one of planning_vehicle, scripted_vehicle, pedestrian, static_obstacle"}},
     {"bad boolean", with_line(13, "    desired_speed_kmh: 30\n    avoidance: yes"), 14, "agents[0].avoidance",

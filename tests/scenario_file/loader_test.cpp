@@ -210,6 +210,20 @@ TEST(scenario_file, parameters_take_their_defaults_and_command_line_overrides_re
   EXPECT_THROW(load_text(full, "full.yaml", options), scenario_error);  // a negative desired speed
 }
 
+TEST(scenario_file, a_planning_vehicle_may_take_the_robust_policy) {
+  std::string text = full;
+  const std::size_t at = text.find("      policy: adj\n");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, std::string("      policy: adj").size(), "      policy: robust");
+  const loaded_scenario l = load_text(text, "full.yaml");
+  EXPECT_EQ(l.scenario.planning_vehicles[0].planner.policy.kind, mm::forecast_policy_kind::robust);
+  load_options options;
+  options.policy = parse_policy("robust");
+  for (const mm::sim::planning_vehicle& v : load_text(full, "full.yaml", options).scenario.planning_vehicles) {
+    EXPECT_EQ(v.planner.policy.kind, mm::forecast_policy_kind::robust);
+  }
+}
+
 TEST(scenario_file, the_command_line_replaces_the_policy_of_every_planning_vehicle_and_the_seed) {
   load_options options;
   options.policy = parse_policy("const:1.5");
@@ -238,6 +252,9 @@ TEST(scenario_file, policies_and_overrides_parse_strictly) {
   EXPECT_FALSE(parse_policy("ADJ").has_value());
   EXPECT_EQ(policy_name(*parse_policy("const:1.0")), "const:1");
   EXPECT_EQ(policy_name(*parse_policy("adj")), "adj");
+  EXPECT_EQ(parse_policy("robust")->kind, mm::forecast_policy_kind::robust);
+  EXPECT_EQ(policy_name(*parse_policy("robust")), "robust");
+  EXPECT_FALSE(parse_policy("robust:1").has_value());
   EXPECT_EQ(parse_override("a_kmh=40")->second, 40.0);
   EXPECT_EQ(parse_override("a_kmh=40")->first, "a_kmh");
   EXPECT_FALSE(parse_override("a_kmh").has_value());

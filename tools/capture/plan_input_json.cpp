@@ -121,8 +121,10 @@ plan_input plan_input_from_json(const nlohmann::json& j) {
     config.policy.kind = forecast_policy_kind::adjustable;
   } else if (policy == to_string(forecast_policy_kind::constant)) {
     config.policy.kind = forecast_policy_kind::constant;
+  } else if (policy == to_string(forecast_policy_kind::robust)) {
+    config.policy.kind = forecast_policy_kind::robust;
   } else {
-    throw std::invalid_argument("config.policy: expected adj or const, got " + policy);
+    throw std::invalid_argument("config.policy: expected adj, const or robust, got " + policy);
   }
   config.policy.constant_forecast_time = c.at("constant_forecast_time").get<double>();
   config.effort = {c.at("effort").at(0).get<double>(), c.at("effort").at(1).get<double>()};

@@ -13,6 +13,9 @@ namespace mm {
 enum class forecast_policy_kind : std::uint8_t {
   adjustable,  ///< ADJ, the paper's method: the non-excluded τ with the most room
   constant,    ///< a fixed τ, capped at TTC
+  /// Robust (an addition spec §7 welcomes): the maneuvers safe under every non-excluded τ of every
+  /// obstacle; ADJ when none is (docs/method.md, "The robust policy").
+  robust,
 };
 
 struct forecast_policy {

@@ -68,6 +68,11 @@ struct plan_result {
   std::size_t forecast_index = 0;          ///< ī
   double mi_brake_selected = 1.0;          ///< MI− under the selected forecast times
   double mi_accelerate_selected = 1.0;     ///< MI+ under the selected forecast times
+  /// Robust policy only: true when the command came from the robust sets, the maneuvers safe under
+  /// every non-excluded forecast time of every obstacle; the selected indices are then theirs, and
+  /// τ̄ (each obstacle's forecast index) the largest of those forecast times. False under the other
+  /// policies, and under the robust one when no maneuver was safe under all of them and ADJ decided.
+  bool robust = false;
 
   /// The column of the Maneuverability Map at this time (spec §6): every obstacle forecast with τ_i.
   std::vector<double> forecast_times;

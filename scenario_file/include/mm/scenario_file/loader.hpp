@@ -112,10 +112,10 @@ loaded_scenario load_file(const std::filesystem::path& file, const load_options&
 /// or `.yml` is a path; otherwise a built-in name if there is one, else a path.
 loaded_scenario load(std::string_view file_or_builtin, const load_options& options = {});
 
-/// Parses a `--policy` value: `adj` or `const:SECONDS` (e.g. `const:1.0`); none if malformed.
+/// Parses a `--policy` value: `adj`, `const:SECONDS` (e.g. `const:1.0`) or `robust`; none if malformed.
 std::optional<mm::forecast_policy> parse_policy(std::string_view text);
 
-/// `adj` or `const:SECONDS` with the shortest decimal form of the forecast time (`const:0.5`).
+/// `adj`, `robust`, or `const:SECONDS` with the shortest decimal form of the forecast time (`const:0.5`).
 std::string policy_name(const mm::forecast_policy& policy);
 
 /// The closest of `candidates` to `word` when it is a plausible typo of it, else "" (the "did you
