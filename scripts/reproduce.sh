@@ -38,7 +38,7 @@ echo "== S3 example runs (A 40 km/h, B 35 km/h, seed 1)" >&2
 s3_runs=()
 for geometry in s3-left-turn sweeps/s3-variants/s3-left-turn-offset-14m.yaml; do
   label=$([[ "$geometry" == s3-left-turn ]] && echo "built-in" || echo "offset-14m")
-  for policy in adj const:1.0; do
+  for policy in adj const:1.0 robust; do
     dir="$out/s3/$label-${policy/:/}"
     $mm run "$geometry" --set a_kmh=40 --set b_kmh=35 --policy "$policy" --seed 1 --out "$dir" --plots >/dev/null
     s3_runs+=("$label, ${policy}=$dir")
@@ -55,6 +55,9 @@ cp "$out/roundabout/snapshot-1.2s-sets.png" "$figures/roundabout-sets-1.2s.png"
 cp "$out/s3/offset-14m-adj/map.png" "$figures/s3-offset-14m-map-adj.png"
 cp "$out/s3/offset-14m-const1.0/map.png" "$figures/s3-offset-14m-map-const1.0.png"
 cp "$out/s3/offset-14m-const1.0/topdown.png" "$figures/s3-offset-14m-topdown-const1.0.png"
+cp "$out/s3/offset-14m-robust/map.png" "$figures/s3-offset-14m-map-robust.png"
+cp "$out/s3/offset-14m-robust/topdown.png" "$figures/s3-offset-14m-topdown-robust.png"
+cp "$out/roundabout/runs/robust_rep0/map.png" "$figures/roundabout-map-robust.png"
 cp "$out/s3/built-in-adj/topdown.png" "$figures/s3-topdown-adj.png"
 /usr/bin/python3 tools/reproduction/report.py --table1 "$out/table1" --roundabout "$out/roundabout" \
   --paper data/paper/table1.csv --template docs/reproduction.template.md --out docs/reproduction.md \

@@ -3,8 +3,9 @@
 # through the maneuvermap command line, with its figures:
 #   1. S2 under ADJ, with its Maneuverability Map, speed profile and top-down view (paper Fig. 8a);
 #   2. a snapshot of A's displacement sets at t = 1.2 s, while it brakes for B (paper Fig. 3);
-#   3. the built-in `roundabout` sweep: S2 under constant τ = 0.5, 1.0, 2.0 s and ADJ, with the
-#      speed profiles of the four runs on one chart (paper Fig. 7) and the map of each.
+#   3. the built-in `roundabout` sweep: S2 under constant τ = 0.5, 1.0, 2.0 s and ADJ (and our
+#      robust policy), with the speed profiles of the five runs on one chart (paper Fig. 7) and the
+#      map of each.
 # Then prints the summary of the ADJ run, the sweep's table and where the figures are.
 set -euo pipefail
 cd "$(dirname "$0")/.."

@@ -184,7 +184,7 @@ TEST(sweep_file, built_in_sweeps_load_with_their_grids) {
   const sweep_spec roundabout = load_sweep("roundabout");
   EXPECT_EQ(roundabout.scenario_argument, "s2-roundabout");
   EXPECT_TRUE(roundabout.keep_runs);
-  EXPECT_EQ(expand(roundabout).size(), 4U);
+  EXPECT_EQ(expand(roundabout).size(), 5U);
 }
 
 TEST(sweep_file, unknown_duplicate_and_missing_keys_are_located_errors) {

@@ -23,7 +23,9 @@ PAPER_POLICY = {"const_0.5": "const:0.5", "const_1.0": "const:1.0", "const_1.5":
                 "const_2.0": "const:2.0", "adj": "adj"}
 POLICY_ORDER = ["const:0.5", "const:1.0", "const:1.5", "const:2.0", "adj"]
 POLICY_LABEL = {"const:0.5": "τ = 0.5 s", "const:1.0": "τ = 1.0 s", "const:1.5": "τ = 1.5 s",
-                "const:2.0": "τ = 2.0 s", "adj": "ADJ"}
+                "const:2.0": "τ = 2.0 s", "adj": "ADJ", "robust": "robust (ours)"}
+# The sensitivity study and the roundabout add the robust policy, which the paper does not have.
+EXTENDED_ORDER = POLICY_ORDER + ["robust"]
 
 
 def read_csv(path):
@@ -199,10 +201,10 @@ def describe_intervals(spans, limit=6):
 
 
 def roundabout_speeds(runs_by_policy):
-    paper = {"const:0.5": "≈ 26", "const:1.0": "32–33", "const:2.0": "32–33", "adj": "≈ 36"}
+    paper = {"const:0.5": "≈ 26", "const:1.0": "32–33", "const:2.0": "32–33", "adj": "≈ 36", "robust": "–"}
     lines = ["| policy | lowest speed km/h (ours) | paper | final speed km/h (ours) | min gap m (ours) |",
              "|---|---|---|---|---|"]
-    for policy in ["const:0.5", "const:1.0", "const:2.0", "adj"]:
+    for policy in ["const:0.5", "const:1.0", "const:2.0", "adj", "robust"]:
         if policy not in runs_by_policy:
             lines.append(f"| {POLICY_LABEL[policy]} | (no run) | {paper[policy]} | | |")
             continue
@@ -234,8 +236,8 @@ def roundabout_timeline_table(runs_by_policy):
 
 def variants_table(directories):
     """Crashes and distances per policy for each S3 variant sweep (B turning from farther left)."""
-    lines = ["| B turns from | B's turn visible for | A km/h | " + " | ".join(POLICY_LABEL[p] for p in POLICY_ORDER) + " |",
-             "|---|---|---|" + "---|" * len(POLICY_ORDER)]
+    lines = ["| B turns from | B's turn visible for | A km/h | " + " | ".join(POLICY_LABEL[p] for p in EXTENDED_ORDER) + " |",
+             "|---|---|---|" + "---|" * len(EXTENDED_ORDER)]
     for directory in directories:
         with open(os.path.join(directory, "sweep.json")) as f:
             sweep = json.load(f)
@@ -245,7 +247,7 @@ def variants_table(directories):
         runs = [r for r in read_csv(os.path.join(directory, "runs.csv")) if not r.get("error")]
         for a in sorted({int(float(r["a_kmh"])) for r in runs}):
             cells = []
-            for policy in POLICY_ORDER:
+            for policy in EXTENDED_ORDER:
                 rs = [r for r in runs if int(float(r["a_kmh"])) == a and normalise_policy(r["policy"]) == policy]
                 crashed = sum(int(r["crash"]) for r in rs)
                 free = [number(r["min_dist_m"]) for r in rs if int(r["crash"]) == 0]

@@ -62,7 +62,7 @@ def main():
                  "parameters:\n"
                  "  a_kmh: [30, 40]\n"
                  "  b_kmh: [35]\n"
-                 "policies: [const:0.5, const:1.0, const:1.5, const:2.0, adj]\n"
+                 "policies: [const:0.5, const:1.0, const:1.5, const:2.0, adj, robust]\n"
                  "repetitions: 3\n"
                  "seed: 1\n")
         with open(os.path.join(args.out, name + ".sweep.yaml"), "w") as f:

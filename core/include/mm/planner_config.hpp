@@ -18,7 +18,7 @@ struct planner_config {
   std::size_t forecast_count = 17;    ///< τ_i = i·Δτ, i = 0..forecast_count−1 (spec §4)
   double history_window = 0.5;        ///< H [s]: observations used to estimate v_j, ω_j (spec §4)
   double safety_margin = 0.0;         ///< inflation of every obstacle [m] (spec §2)
-  forecast_policy policy;             ///< ADJ or constant τ (spec §7)
+  forecast_policy policy;             ///< ADJ, constant τ (spec §7), or robust (docs/method.md §8)
   effort_weights effort;              ///< w_lon, w_lat of J (spec §8)
   bool urgent_steering = false;       ///< spec §8.3, the paper's case-study setting
   /// Samples per family: 15 accelerations × 21 curvatures, the cheapest grid we measured that meets
