@@ -1,6 +1,7 @@
 #include "mm/commonroad/replay.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -74,6 +75,13 @@ std::vector<vec2> world_polygon(const footprint& shape, const state& x) {
   return {placed.vertices.begin(), placed.vertices.begin() + static_cast<std::ptrdiff_t>(placed.vertex_count)};
 }
 
+/// `value` to 6 significant digits ("1e+117", "0.1").
+std::string general(double value) {
+  char buffer[32];
+  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 6).ptr;
+  return std::string(buffer, end);
+}
+
 measure_error cannot_replay(const obstacle& o, const std::string& why) {
   return measure_error("road user " + std::to_string(o.id) + " (" + o.type + "): " + why);
 }
@@ -126,6 +134,11 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
     if (!o.states.empty()) last_step = std::max(last_step, o.states.back().step);
   }
   out.duration = std::max(step_time(s, last_step), out.time_step);
+  if (!(out.duration / out.time_step <= sim::largest_step_count)) {
+    throw measure_error("the recording lasts " + general(out.duration) + " s (timeStepSize " + general(s.time_step) +
+                        " s): expected at most 10^7 simulation steps of 0.01 s (" +
+                        general(sim::largest_step_count * out.time_step) + " s) to replay");
+  }
 
   const auto* body = std::get_if<rectangle>(&agent.shape);
   if (body == nullptr) throw cannot_replay(agent, "the planner drives a rectangular footprint; this one is not");

@@ -146,6 +146,9 @@ std::optional<std::string> validation_error(const scenario& s) {
   c.positive("time_step", s.time_step, "s");
   c.require(!(s.time_step > s.duration), "time_step", s.time_step,
             "at most the duration " + number(s.duration) + " s");
+  c.require(!(s.duration / s.time_step > largest_step_count), "duration", s.duration,
+            "at most 10^7 time steps of " + number(s.time_step) + " s (" + number(largest_step_count * s.time_step) +
+                " s)");
   c.non_negative("noise.position_sd", s.noise.position_sd, "m");
   c.non_negative("noise.heading_sd", s.noise.heading_sd, "rad");
   c.non_negative("noise.speed_sd", s.noise.speed_sd, "m/s");

@@ -223,6 +223,11 @@ TEST(replay, a_road_user_that_cannot_be_driven_or_moved_is_refused_with_its_id_a
   round.obstacles[0].shape = mm::disc{1.0};
   EXPECT_PRED2(contains, refusal(round, 1), "road user 1 (car): the planner drives a rectangular footprint");
   EXPECT_PRED2(contains, refusal(s, 99), "road user 99: no obstacle has this id");
+  scenario ages = traffic();
+  ages.time_step = 1e6;  // 40 steps of 11.6 days: more simulation steps than a run may take
+  EXPECT_PRED2(contains, refusal(ages, 1),
+               "the recording lasts 4e+07 s (timeStepSize 1e+06 s): expected at most 10^7 simulation steps of 0.01 s "
+               "(100000 s) to replay");
 }
 
 }  // namespace

@@ -276,6 +276,14 @@ TEST(simulation, scenario_validation_names_the_agent_and_the_field) {
             "planning_vehicles[0] \"A\": desired_speed = -1: expected a finite number ≥ 0 [m/s]");
   EXPECT_THROW(simulation{bad_speed}, std::invalid_argument);
 
+  scenario endless = s;
+  endless.duration = 1e300;  // its step count would overflow
+  EXPECT_EQ(validation_error(endless).value(),
+            "scenario: duration = 1e+300: expected at most 10^7 time steps of 0.01 s (1e+05 s)");
+  EXPECT_THROW(simulation{endless}, std::invalid_argument);
+  endless.duration = 1e5;  // exactly 10^7 steps
+  EXPECT_FALSE(validation_error(endless).has_value());
+
   scenario same_name = s;
   same_name.scripted_vehicles[0].name = "A";
   EXPECT_NE(validation_error(same_name).value().find("scripted_vehicles[0] \"A\": name"), std::string::npos);

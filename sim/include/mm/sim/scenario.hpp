@@ -21,6 +21,9 @@ namespace mm::sim {
 /// `mm::smallest_collision_time_step`: 0.05 m over 200 m/s is 0.25 ms.
 inline constexpr double smallest_road_user_size = 0.05;   ///< [m], a footprint's smallest dimension
 inline constexpr double largest_road_user_speed = 100.0;  ///< [m/s]
+/// The most time steps a run may take (duration / time_step): 10⁷, almost 28 hours at 100 Hz. A
+/// longer run is refused rather than simulated for days, or its step count overflowed.
+inline constexpr double largest_step_count = 1e7;
 
 /// Gaussian sensor noise on every observation a planning vehicle makes (spec §4): independent,
 /// zero-mean, with these standard deviations. Zero (the default) is exact sensing.
