@@ -401,7 +401,8 @@ snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::
   for (std::size_t i : selected) {
     for (std::size_t m = 0; m < samples.maneuvers.size(); ++m) {
       shot.rows.push_back({taus[i], samples.families[m], samples.maneuvers[m], samples.end_points[m],
-                           samples.area_weights[m], samples.safe_by_forecast[i][m] != 0});
+                           samples.area_weights[m], samples.safe_by_forecast[i][m] != 0,
+                           samples.safe_selected[m] != 0});
     }
   }
   return shot;
@@ -409,11 +410,11 @@ snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::
 
 void write_snapshot_csv(std::ostream& out, const snapshot& shot) {
   fmt::memory_buffer buffer;
-  fmt::format_to(std::back_inserter(buffer), "tau,family,accel,curvature,end_x,end_y,area_weight,safe\n");
+  fmt::format_to(std::back_inserter(buffer), "tau,family,accel,curvature,end_x,end_y,area_weight,safe,selected\n");
   for (const snapshot_row& r : shot.rows) {
-    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{}\n", fixed(r.forecast_time), mm::to_string(r.fam),
-                   fixed(r.u.acceleration), fixed(r.u.curvature), fixed(r.end_point.x), fixed(r.end_point.y),
-                   fixed(r.area_weight), r.safe ? 1 : 0);
+    fmt::format_to(std::back_inserter(buffer), "{},{},{},{},{},{},{},{},{}\n", fixed(r.forecast_time),
+                   mm::to_string(r.fam), fixed(r.u.acceleration), fixed(r.u.curvature), fixed(r.end_point.x),
+                   fixed(r.end_point.y), fixed(r.area_weight), r.safe ? 1 : 0, r.selected ? 1 : 0);
   }
   out.write(buffer.data(), static_cast<std::streamsize>(buffer.size()));
 }
@@ -480,6 +481,9 @@ void write_snapshot_json(std::ostream& out, const snapshot& shot, const scenario
       {"ttc_s", optional_number(r.time_to_collision)},
       {"mi_brake_at_tau_bar", r.mi_brake.empty() ? json(nullptr) : json(rounded(r.mi_brake[bar]))},
       {"mi_accel_at_tau_bar", r.mi_accelerate.empty() ? json(nullptr) : json(rounded(r.mi_accelerate[bar]))},
+      {"mi_brake_selected", rounded(r.mi_brake_selected)},
+      {"mi_accel_selected", rounded(r.mi_accelerate_selected)},
+      {"robust", r.robust},
       {"nominal", displacement(in.nominal)},
       {"chosen", displacement(r.command)},
       {"obstacles", obstacles}};

@@ -145,7 +145,7 @@ agents:
 TEST(maneuvermap, snapshot_writes_csv_to_standard_output) {
   const result r = run("snapshot s1-crossing-no-steering --time 0.2 --agent A --tau 0", "snapshot_ok");
   EXPECT_EQ(r.code, 0) << r.err;
-  EXPECT_EQ(r.out.rfind("tau,family,accel,curvature,end_x,end_y,area_weight,safe\n0.000000,brake,", 0), 0U) << r.out;
+  EXPECT_EQ(r.out.rfind("tau,family,accel,curvature,end_x,end_y,area_weight,safe,selected\n0.000000,brake,", 0), 0U) << r.out;
 }
 
 TEST(maneuvermap, an_output_directory_that_cannot_be_created_is_an_error_with_exit_1) {

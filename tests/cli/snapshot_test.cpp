@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <string>
 
 #include "mm/cli/commands.hpp"
 
@@ -158,9 +159,40 @@ TEST(snapshot, the_csv_has_one_row_per_sample_and_forecast_time) {
   std::ostringstream out;
   write_snapshot_csv(out, shot);
   const std::string text = out.str();
-  EXPECT_EQ(text.rfind("tau,family,accel,curvature,end_x,end_y,area_weight,safe\n", 0), 0U);
+  EXPECT_EQ(text.rfind("tau,family,accel,curvature,end_x,end_y,area_weight,safe,selected\n", 0), 0U);
   EXPECT_EQ(static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n')), 1U + 17U * samples);
   EXPECT_NE(text.find("\n2.000000,accelerate,"), std::string::npos);  // the last τ
+}
+
+TEST(snapshot, the_selected_column_is_the_decision_s_set_under_adj_and_under_the_robust_policy) {
+  // A turning car, under ADJ (one obstacle: the column of τ̄) and under the robust policy (every
+  // forecast time TTC leaves: the intersection of those columns).
+  sf::load_options options;
+  options.overrides = {{"a_kmh", 40.0}, {"b_kmh", 35.0}};
+  const std::string file = std::string(MM_SOURCE_DIR) + "/sweeps/s3-variants/s3-left-turn-offset-14m.yaml";
+  for (const char* policy : {"adj", "robust"}) {
+    options.policy = sf::parse_policy(policy);
+    const snapshot shot = take_snapshot(sf::load(file, options), "A", 2.5, std::nullopt);
+    const mm::plan_result& r = shot.result;
+    const std::size_t samples = r.samples->maneuvers.size();
+    ASSERT_EQ(shot.rows.size(), r.forecast_times.size() * samples);
+    EXPECT_EQ(r.robust, std::string(policy) == "robust");
+    std::size_t differ = 0;
+    for (std::size_t m = 0; m < samples; ++m) {
+      bool under_every = true;
+      for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+        const snapshot_row& row = shot.rows[i * samples + m];
+        EXPECT_EQ(row.selected, shot.rows[m].selected) << "the same in every row of sample " << m;
+        if (r.excluded[i] == 0) under_every = under_every && row.safe;
+      }
+      const bool expected = r.robust ? under_every : shot.rows[r.forecast_index * samples + m].safe;
+      EXPECT_EQ(shot.rows[m].selected, expected) << policy << ", sample " << m;
+      differ += shot.rows[m].selected == shot.rows[r.forecast_index * samples + m].safe ? 0 : 1;
+    }
+    if (r.robust) {
+      EXPECT_GT(differ, 10U) << "the robust set must differ from the column of τ̄ here";
+    }
+  }
 }
 
 TEST(snapshot, bad_requests_are_input_errors) {

@@ -760,7 +760,10 @@ def plot_snapshot(csv_path, out_dir, written):
     at = [r for r in rows if abs(float(r["tau"]) - tau) < 1e-6]
     pts = np.array([[float(r["end_x"]), float(r["end_y"])] for r in at])
     fam = np.array([r["family"] for r in at])
-    safe = np.array([r["safe"] == "1" for r in at])
+    # The decision's sets where the CSV has them (each obstacle at its own τ, or the robust sets),
+    # else the column of τ̄.
+    decision = "selected" in at[0]
+    safe = np.array([r["selected" if decision else "safe"] == "1" for r in at])
 
     fig, (ax, ax_scene) = plt.subplots(1, 2, figsize=(12, 5.6), gridspec_kw={"width_ratios": [1.1, 1]})
     hull = convex_hull(pts)
@@ -786,10 +789,14 @@ def plot_snapshot(csv_path, out_dir, written):
         ax.add_patch(Polygon(footprint_outline(ego["footprint"], ex, ey, ego["heading_rad"]), closed=True,
                              fc="#bdbdbd", ec="black", lw=0.8, zorder=1))
         ttc = info.get("ttc_s")
-        title = (f"{info['scenario']}, {info['agent']} at t = {info['time_s']:.2f} s, policy {policy_label(info['policy'])}\n"
-                 f"τ̄ = {info['tau_bar_s']:g} s, family {info['family']}, mode {info['mode']}, "
-                 f"TTC {'∞' if ttc is None else f'{ttc:.2f} s'}, "
-                 f"MI⁻ = {info['mi_brake_at_tau_bar']:.2f}, MI⁺ = {info['mi_accel_at_tau_bar']:.2f}")
+        selected = decision and "mi_brake_selected" in info
+        mi_brake = info["mi_brake_selected"] if selected else info["mi_brake_at_tau_bar"]
+        mi_accel = info["mi_accel_selected"] if selected else info["mi_accel_at_tau_bar"]
+        sets = ("safe under every τ ≤ τ̄" if info.get("robust") else "the decision's sets") if selected else f"τ = {tau:g} s"
+        fig.suptitle(f"{info['scenario']}, {info['agent']} at t = {info['time_s']:.2f} s, "
+                     f"policy {policy_label(info['policy'])}", fontsize=11)
+        title = (f"{sets}: τ̄ = {info['tau_bar_s']:g} s, {info['family']}, {info['mode']}, "
+                 f"TTC {'∞' if ttc is None else f'{ttc:.2f} s'}, MI⁻ = {mi_brake:.2f}, MI⁺ = {mi_accel:.2f}")
     ax.set_aspect("equal")
     ax.set_xlabel("x (east) [m]")
     ax.set_ylabel("y (north) [m]")
@@ -824,7 +831,7 @@ def plot_snapshot(csv_path, out_dir, written):
     ax_scene.set_aspect("equal")
     ax_scene.set_xlabel("x (east) [m]")
     ax_scene.set_ylabel("y (north) [m]")
-    ax_scene.set_title("The scene: displacements (grey safe, red colliding) and forecasts", fontsize=10)
+    ax_scene.set_title("The scene: displacements (grey safe, red colliding)\nand forecasts", fontsize=10)
     if info is not None:
         ax_scene.legend(loc="upper center", bbox_to_anchor=(0.5, -0.13), fontsize=8, ncol=1, frameon=False)
     stem = os.path.splitext(os.path.basename(csv_path))[0]

@@ -57,6 +57,10 @@ struct snapshot_row {
   vec2 end_point;              ///< displacement at T_h, world frame [m]
   double area_weight = 0.0;    ///< [m²]
   bool safe = false;           ///< safe with every obstacle forecast with τ_i
+  /// Safe under the forecast times the decision used (`sample_snapshot::safe_selected`): each
+  /// obstacle at its own, or under the robust policy each at every non-excluded one. The same in
+  /// every row of a sample.
+  bool selected = false;
 };
 
 /// A re-plan of one planning vehicle with the samples recorded (`maneuvermap snapshot`).
