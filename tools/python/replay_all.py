@@ -1,14 +1,15 @@
 """Replays every road user of the bundled CommonRoad files, without and with the planner
 (docs/commonroad.md, "What the bundled files show").
 
-    PYTHONPATH=build/release/python /usr/bin/python3 tools/python/replay_all.py [FILE.xml ...]
+    PYTHONPATH=build/release/python /usr/bin/python3 tools/python/replay_all.py [--policy POLICY] [FILE.xml ...]
 
 For each road user that can be driven: a replay without avoidance (the path follower alone, the
-baseline) and one with the planner (default options, ADJ); prints the crashes of each, with the
+baseline) and one with the planner (default options, ADJ, or POLICY as on the command line:
+`robust`, `const:1.0`); prints the crashes of each, with the
 time and the closest distance, and the road users that cannot be driven, with the reason.
 """
+import argparse
 import pathlib
-import sys
 import time
 
 import maneuvermap as mm
@@ -23,14 +24,14 @@ def describe(metrics):
     return f"no crash, closest {metrics.min_dist_m:.4f} m" if metrics.min_dist_m is not None else "no crash"
 
 
-def main(files):
+def main(files, policy):
     for file in files:
         recording = mm.commonroad.read_scenario(file)
         start = time.perf_counter()
         driven, refused, crashes = 0, [], {False: [], True: []}
         for agent in mm.commonroad.measurable_road_users(recording):
             try:
-                runs = {avoid: mm.sim.run(mm.commonroad.replay_scenario(recording, agent, avoidance=avoid),
+                runs = {avoid: mm.sim.run(mm.commonroad.replay_scenario(recording, agent, avoidance=avoid, policy=policy),
                                           map_columns=False).metrics[0] for avoid in (False, True)}
             except ValueError as error:
                 refused.append(f"{agent}: {error}")
@@ -50,4 +51,8 @@ def main(files):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:] or [f"data/commonroad/{name}.xml" for name in BUNDLED])
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--policy", default="adj", help="forecast policy of the planner: adj, const:SECONDS or robust")
+    parser.add_argument("files", nargs="*", help="CommonRoad files (default: the bundled ones)")
+    args = parser.parse_args()
+    main(args.files or [f"data/commonroad/{name}.xml" for name in BUNDLED], mm.forecast_policy.parse(args.policy))
