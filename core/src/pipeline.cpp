@@ -50,6 +50,33 @@ plan_result invalid(std::string error) {
   return result;
 }
 
+/// True when `u` is proven collision-free in continuous time (`verified_collision_free`, or its
+/// reference) with every obstacle under each of its forecast indices `candidates[j]` (sorted): one
+/// proof per forecast time, with the obstacles that may be forecast with it. A forecast that does
+/// not turn (ω = 0) is the same under every τ, so such an obstacle is proven once, at τ = 0.
+bool verified_under_every_forecast(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
+                                   std::span<const std::vector<std::size_t>> candidates, std::span<const double> taus,
+                                   const collision_window& window, bool reference) {
+  std::vector<forecast_obstacle> those;
+  std::vector<double> those_tau;
+  for (std::size_t i = 0; i < taus.size(); ++i) {
+    those.clear();
+    those_tau.clear();
+    for (std::size_t j = 0; j < obstacles.size(); ++j) {
+      if (i > 0 && obstacles[j].motion.yaw_rate == 0.0) continue;
+      if (!std::binary_search(candidates[j].begin(), candidates[j].end(), i)) continue;
+      those.push_back(obstacles[j]);
+      those_tau.push_back(taus[i]);
+    }
+    if (those.empty()) continue;
+    const bool free = reference
+                          ? verified_collision_free_reference(ego, u, those, those_tau, window, verification_resolution)
+                          : verified_collision_free(ego, u, those, those_tau, window, verification_resolution);
+    if (!free) return false;
+  }
+  return true;
+}
+
 /// The clearances of every relevant obstacle under an assignment of forecast times, and how to
 /// turn them into indices. The reference holds ±1 per sample (collides or not) and counts; the fast
 /// path holds a `clearance_field` per obstacle and makes exact only the values the interpolating
@@ -686,34 +713,13 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     const clearance_set every = evaluate.combined_of(parts);
     const sample_mask robust_colliding = evaluate.colliding(every);
     const maneuverability_pair mi = evaluate.indices(every);
-    std::vector<forecast_obstacle> those;
-    std::vector<double> those_tau;
     choice_input choice;
     choice.samples = &samples;
     choice.colliding = &robust_colliding;
     choice.selected_family = select_family(mi.brake, mi.accelerate);
     choice.nominal = nominal;
-    // Proven collision-free in continuous time under each forecast time, with the obstacles that
-    // may be forecast with it (a forecast that does not turn is the same under every τ: once).
     choice.verify = [&](const maneuver& u) {
-      for (std::size_t i = 0; i < tau_count; ++i) {
-        those.clear();
-        those_tau.clear();
-        for (std::size_t j = 0; j < n; ++j) {
-          const std::vector<std::size_t>& allowed = problem.candidates[j];
-          if (i > 0 && relevant[j].motion.yaw_rate == 0.0) continue;
-          if (!std::binary_search(allowed.begin(), allowed.end(), i)) continue;
-          those.push_back(relevant[j]);
-          those_tau.push_back(taus[i]);
-        }
-        if (those.empty()) continue;
-        const bool free = options.reference ? verified_collision_free_reference(ego, u, those, those_tau, window,
-                                                                                verification_resolution)
-                                            : verified_collision_free(ego, u, those, those_tau, window,
-                                                                      verification_resolution);
-        if (!free) return false;
-      }
-      return true;
+      return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference);
     };
     choice.nominal_safe = choice.verify(nominal);
     choice.initial_speed = ego.speed;
