@@ -203,7 +203,7 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
   const auto file = [&](const char* name) { return settings.out_dir / name; };
   csv_file trajectories(file("trajectories.csv"), "t,agent,x,y,heading,speed,accel,curvature");
   csv_file map(file("map.csv"), "t,agent,tau,mi_brake,mi_accel,excluded");
-  csv_file decisions(file("decisions.csv"), "t,agent,tau_bar,family,mode,ttc,cpu_us");
+  csv_file decisions(file("decisions.csv"), "t,agent,tau_bar,family,mode,ttc,cpu_us,robust");
 
   mm::sim::simulation sim(s, {settings.measure_cpu_time, settings.jobs});
   std::size_t shown_step = 0;
@@ -255,7 +255,7 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
       field(row, mm::to_string(r.mode));
       number(row, r.time_to_collision, ',');
       if (settings.measure_cpu_time) append_fixed(row, p.cpu_time_us, 3);
-      row.push_back('\n');
+      row.append(std::string_view(r.robust ? ",1\n" : ",0\n"));
     }
     trajectories.flush();
     map.flush();

@@ -271,7 +271,7 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
   }
   std::stable_sort(keys.begin(), keys.end(), [](const row_key& a, const row_key& b) { return a.time < b.time; });
   std::string map = "t,agent,tau,mi_brake,mi_accel,excluded\n";
-  std::string decisions = "t,agent,tau_bar,family,mode,ttc,cpu_us\n";
+  std::string decisions = "t,agent,tau_bar,family,mode,ttc,cpu_us,robust\n";
   std::string rooms = "t,agent,speed,room,mode,ttc\n";
   for (const row_key& key : keys) {
     const cr::measured_step& step = outcome.measurements[key.measurement].steps[key.step];
@@ -287,7 +287,7 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
     decisions += prefix;
     append_number(decisions, r.forecast_time, ',');
     decisions += std::string(mm::to_string(r.selected_family)) + ',' + std::string(mm::to_string(r.mode)) + ',';
-    decisions += fixed(r.time_to_collision) + ",\n";
+    decisions += fixed(r.time_to_collision) + (r.robust ? ",,1\n" : ",,0\n");
     rooms += prefix;
     append_number(rooms, step.ego.speed, ',');
     append_number(rooms, cr::room(r), ',');

@@ -43,6 +43,7 @@ struct map_record {
   std::vector<double> command_acceleration;
   std::vector<double> command_curvature;
   std::vector<double> cpu_time_us;
+  std::vector<std::uint8_t> robust;
 };
 
 /// Everything a run of `run` recorded: the states of every agent at every step, the maps.
@@ -102,6 +103,7 @@ void record_instant(const sim::simulation& now, run_record& record) {
     map.command_acceleration.push_back(r.command.acceleration);
     map.command_curvature.push_back(r.command.curvature);
     map.cpu_time_us.push_back(p.cpu_time_us);
+    map.robust.push_back(r.robust ? 1 : 0);
   }
 }
 
@@ -392,6 +394,8 @@ void bind_simulation(py::module_& m) {
                              "int(maneuvermap.family.…)")
       .def_property_readonly("mode", [](const map_record& r) { return array_of(r.mode); },
                              "int(maneuvermap.planning_mode.…)")
+      .def_property_readonly("robust", [](const map_record& r) { return flags_of(r.robust); },
+                             "the robust policy's sets decided (plan_result.robust), per step")
       .def_property_readonly("time_to_collision", [](const map_record& r) { return array_of(r.time_to_collision); },
                              "[s], inf for none")
       .def_property_readonly("command_acceleration",

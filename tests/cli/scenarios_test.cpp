@@ -268,13 +268,14 @@ agents:
   const auto map = csv_rows(dir / "map.csv", &header);
   EXPECT_EQ(header, "t,agent,tau,mi_brake,mi_accel,excluded");
   const auto decisions = csv_rows(dir / "decisions.csv", &header);
-  EXPECT_EQ(header, "t,agent,tau_bar,family,mode,ttc,cpu_us");
+  EXPECT_EQ(header, "t,agent,tau_bar,family,mode,ttc,cpu_us,robust");
   EXPECT_EQ(decisions.size(), 50U);  // planned at every instant but the last, at which the run ended
   EXPECT_EQ(map.size(), 17U * decisions.size());
   EXPECT_EQ(outcome.metrics.at(0).planning_steps, 50U);
   for (const auto& row : decisions) {
-    ASSERT_EQ(row.size(), 7U);
+    ASSERT_EQ(row.size(), 8U);
     EXPECT_FALSE(row[6].empty()) << "--timing fills cpu_us";
+    EXPECT_EQ(row[7], "0") << "ADJ: the robust sets never decide";
     EXPECT_TRUE(row[3] == "brake" || row[3] == "accelerate");
   }
   EXPECT_EQ(decisions[0][5], "") << "no obstacle yet: TTC is infinite, written empty";

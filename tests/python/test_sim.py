@@ -41,6 +41,22 @@ def test_a_run_gives_the_trajectories_and_the_map_that_maneuvermap_run_writes(cl
         assert (row["excluded"] == "1") == a.excluded[step, i]
 
 
+def test_a_robust_run_marks_the_steps_its_robust_sets_decided_as_decisions_csv_does(cli, source_dir, tmp_path):
+    # S3 with 2.3 s of B's turn visible: the robust policy avoids, falling back to ADJ at a few steps.
+    file = source_dir / "sweeps" / "s3-variants" / "s3-left-turn-offset-14m.yaml"
+    subprocess.run([cli, "run", str(file), "--set", "a_kmh=40", "--set", "b_kmh=35", "--policy", "robust",
+                    "--out", str(tmp_path)], check=True, capture_output=True)
+    record = mm.sim.run(file, set={"a_kmh": 40.0, "b_kmh": 35.0}, policy=mm.forecast_policy.parse("robust"))
+    assert not record.metrics[0].crash
+    a = record.map("A")
+    assert a.robust.dtype == bool and a.robust.any() and not a.robust.all()
+    rows = read_csv(tmp_path / "decisions.csv")
+    assert [row["robust"] == "1" for row in rows] == a.robust.tolist()
+    # Where the robust sets decided, τ̄ is the largest forecast time not excluded.
+    largest = np.array([a.forecast_times[~row].max() for row in a.excluded])
+    np.testing.assert_array_equal(a.forecast_time[a.robust], largest[a.robust])
+
+
 def test_the_same_scenario_and_seed_give_identical_arrays_on_one_and_two_threads():
     first = mm.sim.run("s1-crossing", seed=5, jobs=1)
     second = mm.sim.run("s1-crossing", seed=5, jobs=2)
