@@ -289,6 +289,9 @@ def plot_map(run, agent, out_dir, name, written):
     ttc = np.array([number(d["ttc"]) if d["ttc"] != "" else np.nan for d in decisions])
     families = [d["family"] for d in decisions]
     modes = [d["mode"] for d in decisions]
+    # Under the robust policy: the steps at which ADJ decided, no maneuver being safe under every
+    # forecast time (decisions.csv's robust column, docs/method.md §8).
+    fallback = np.array([run.policy == "robust" and d.get("robust") == "0" for d in decisions], dtype=bool)
     # Switches of the selected family while avoiding (non-nominal modes only).
     switches = []
     last = None
@@ -326,6 +329,8 @@ def plot_map(run, agent, out_dir, name, written):
         mesh = ax.pcolormesh(t_edges, tau_edges, values, cmap=cmap, vmin=0, vmax=1, shading="flat", rasterized=True)
         ax.step(dt_times, tau_bar, where="mid", color="black", lw=1.6, label="τ̄ (selected forecast time)")
         ax.plot(dt_times, ttc, color="white", lw=1.0, ls="--", label="TTC")
+        if fallback.any():
+            ax.scatter(dt_times[fallback], tau_bar[fallback], marker="o", s=6, color="#7b3294", zorder=3, lw=0)
         for t, fam_to in switches:
             ax.axvline(t, color=FAMILY_COLOURS[fam_to], lw=1.4, ls=":")
         ax.set_ylim(tau_edges[0], tau_edges[-1])
@@ -344,6 +349,8 @@ def plot_map(run, agent, out_dir, name, written):
         Line2D([], [], color="#555555", lw=1.0, ls="--", label="TTC"),
         Polygon([[0, 0]], closed=True, color="#9e9e9e", label="excluded (τ > TTC)"),
     ]
+    if fallback.any():
+        handles.append(Line2D([], [], color="#7b3294", marker="o", ms=4, ls="none", label="τ̄ where ADJ decided"))
     handles += [Line2D([], [], color=FAMILY_COLOURS[f], lw=1.4, ls=":", label=f"switch to {f}")
                 for f in ("brake", "accelerate") if any(to == f for _, to in switches)]
     handles += [Polygon([[0, 0]], closed=True, color=c, label=f"mode {m}") for m, c in MODE_COLOURS.items() if m in modes]
