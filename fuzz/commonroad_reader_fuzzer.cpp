@@ -1,8 +1,9 @@
 // libFuzzer target for the CommonRoad reader: any input must either read or be rejected with a
 // read_error that says something; what it reads must give a planning input of its first road user
 // at its last state, or be refused with a measure_error, and the planner must plan on that input
-// (indices in [0, 1]) or refuse it with a status; and its replay with that road user driven by the
-// planner must be a valid simulation that takes a few steps, or be refused with a measure_error.
+// (indices in [0, 1]) or refuse it with a status, under ADJ and under the robust policy alike; and
+// its replay with that road user driven by the planner must be a valid simulation that takes a few
+// steps, or be refused with a measure_error.
 // Any other exception, a crash, a leak or a hang is a bug.
 // Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
 #include <cstddef>
@@ -30,6 +31,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const mm::plan_input in = mm::commonroad::planning_input(s, options, agent->states.back().step);
     const mm::plan_result r = mm::plan(in);
     if (r.ok() && !(r.mi_brake_selected >= 0.0 && r.mi_brake_selected <= 1.0)) __builtin_trap();
+    mm::plan_input robust = in;
+    robust.config.policy.kind = mm::forecast_policy_kind::robust;
+    const mm::plan_result rr = mm::plan(robust);
+    if (rr.ok() != r.ok() || (rr.ok() && !(rr.mi_accelerate_selected >= 0.0 && rr.mi_accelerate_selected <= 1.0))) {
+      __builtin_trap();
+    }
     mm::commonroad::replay_options replay;
     replay.agent = options.agent;
     mm::sim::simulation sim(mm::commonroad::replay_scenario(s, replay));
