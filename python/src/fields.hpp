@@ -30,7 +30,8 @@ void set_fields(py::handle self, const py::kwargs& fields);
 std::string fields_repr(py::handle self, bool writable_only = false);
 
 /// Gives a bound value type a keyword constructor (`ego_state(speed=8.3)`), `__repr__` and
-/// `__eq__` by fields (values compare equal when every field does).
+/// `__eq__` by fields (values compare equal when every field does), and pickling by fields (so that
+/// values can be sent to other processes: `multiprocessing`, `concurrent.futures`).
 template <class T, class... Options>
 py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
   c.def(py::init<>());
@@ -49,11 +50,25 @@ py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
     return true;
   });
   c.attr("__hash__") = py::none();
+  c.def(py::pickle(
+      [](py::handle self) {
+        py::dict state;
+        for (const std::string& name : field_names(py::type::of(self), true)) {
+          state[py::str(name)] = self.attr(name.c_str());
+        }
+        return state;
+      },
+      [](const py::dict& state) {
+        py::object value = py::cast(T{});
+        set_fields(value, py::reinterpret_borrow<py::kwargs>(state));
+        return value.cast<T>();
+      }));
   return c;
 }
 
 /// Gives a bound list type `__eq__` by its elements (a list of value types without a C++ `==`), so
 /// that values holding such lists compare by their contents; the other side may be a Python list.
+/// Pickled as the list of its elements.
 template <class Vector, class... Options>
 py::class_<Vector, Options...>& compared_by_elements(py::class_<Vector, Options...>& c) {
   c.def("__eq__", [](py::handle self, py::handle other) {
@@ -62,6 +77,12 @@ py::class_<Vector, Options...>& compared_by_elements(py::class_<Vector, Options.
     return as_list(self).equal(as_list(other));
   });
   c.attr("__hash__") = py::none();
+  c.def(py::pickle([](py::handle self) { return py::list(py::reinterpret_borrow<py::object>(self)); },
+                   [](const py::list& items) {
+                     Vector values;
+                     for (py::handle item : items) values.push_back(item.cast<typename Vector::value_type>());
+                     return values;
+                   }));
   return c;
 }
 

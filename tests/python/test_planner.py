@@ -1,5 +1,8 @@
 """The planner from Python: the value types go in, the result comes out as the C++ one (docs/python.md)."""
+import concurrent.futures
 import math
+import multiprocessing
+import pickle
 import threading
 
 import numpy as np
@@ -136,6 +139,30 @@ def test_value_types_compare_and_print_by_their_fields():
     assert tuple(mm.vec2(3.0, 4.0)) == (3.0, 4.0)
     assert crossing_scene() == crossing_scene()  # the obstacles and their histories by their contents
     assert crossing_scene() != crossing_scene(crossing_speed=9.0)
+
+
+def plan_command(scene):
+    """What a worker process returns: the command of a plan, as plain numbers."""
+    result = mm.plan(scene)
+    return result.command.acceleration, result.command.curvature
+
+
+def test_value_types_pickle_by_their_fields_and_plan_the_same_in_another_process():
+    scene = crossing_scene()
+    scene.ego.shape = mm.convex_polygon(vertices=[(2.0, -1.0), (2.0, 1.0), (-2.0, 1.0), (-2.0, -1.0)])
+    scene.obstacles[0].motion = mm.motion_estimate(pose=mm.pose(22.0, 20.0, -math.pi / 2), speed=10.0, yaw_rate=0.1)
+    scene.config = mm.planner_config(policy=mm.forecast_policy.parse("robust"), safety_margin=0.2,
+                                     resolution=mm.sampling_resolution(accelerations=11, curvatures=15))
+    copy = pickle.loads(pickle.dumps(scene))
+    assert copy == scene
+    assert copy.config.policy.kind == mm.forecast_policy_kind.robust and copy.ego.shape == scene.ego.shape
+    assert copy.obstacles[0].motion == scene.obstacles[0].motion
+    changed = pickle.loads(pickle.dumps(scene))
+    changed.obstacles[0].history[0].speed = 9.0
+    assert changed != scene  # a copy, not the same C++ object
+    expected = plan_command(scene)
+    with concurrent.futures.ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
+        assert list(pool.map(plan_command, [scene, copy])) == [expected, expected]
 
 
 def test_recorded_samples_come_as_arrays_of_one_length_and_the_command_is_a_safe_sample():
