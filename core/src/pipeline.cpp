@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <initializer_list>
 #include <limits>
 #include <map>
@@ -695,6 +696,24 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     result.mi_accelerate = mi_accelerate;
   }
 
+  // Spec §8 rules 1–3 on the samples outside `unsafe`, family `f` first, each candidate (the
+  // nominal maneuver first) passing `verify`: collision-free in continuous time, not only at the
+  // sample times, since a minimal-effort choice lies at the edge of the safe set, where a corner can
+  // clip between samples.
+  const auto choose = [&](const sample_mask& unsafe, family f, std::function<bool(const maneuver&)> verify) {
+    choice_input choice;
+    choice.samples = &samples;
+    choice.colliding = &unsafe;
+    choice.selected_family = f;
+    choice.nominal = nominal;
+    choice.verify = std::move(verify);
+    choice.nominal_safe = choice.verify(nominal);
+    choice.initial_speed = ego.speed;
+    choice.weights = config.effort;
+    choice.urgent_steering = config.urgent_steering;
+    return choose_maneuver(choice);
+  };
+
   // The robust policy (docs/method.md, "The robust policy"): the maneuvers safe with every obstacle
   // under each of its non-excluded forecast times, one set; ADJ below when none of them is safe and
   // verified. An obstacle whose forecast does not depend on τ (fast path: inert or not turning)
@@ -713,19 +732,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     const clearance_set every = evaluate.combined_of(parts);
     const sample_mask robust_colliding = evaluate.colliding(every);
     const maneuverability_pair mi = evaluate.indices(every);
-    choice_input choice;
-    choice.samples = &samples;
-    choice.colliding = &robust_colliding;
-    choice.selected_family = select_family(mi.brake, mi.accelerate);
-    choice.nominal = nominal;
-    choice.verify = [&](const maneuver& u) {
-      return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference);
-    };
-    choice.nominal_safe = choice.verify(nominal);
-    choice.initial_speed = ego.speed;
-    choice.weights = config.effort;
-    choice.urgent_steering = config.urgent_steering;
-    if (const auto decision = choose_maneuver(choice)) {
+    const family robust_family = select_family(mi.brake, mi.accelerate);
+    if (const auto decision = choose(robust_colliding, robust_family, [&](const maneuver& u) {
+          return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference);
+        })) {
       robust_decided = true;
       colliding = robust_colliding;
       result.robust = true;
@@ -733,7 +743,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       result.mode = decision->mode;
       result.mi_brake_selected = mi.brake;
       result.mi_accelerate_selected = mi.accelerate;
-      result.selected_family = choice.selected_family;
+      result.selected_family = robust_family;
       for (std::size_t j = 0; j < n; ++j) {
         result.obstacles[relevant_track[j]].forecast_index = problem.candidates[j].back();
       }
@@ -810,23 +820,11 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     // The maneuver (spec §8).
     std::vector<double> assigned_tau(n);
     for (std::size_t j = 0; j < n; ++j) assigned_tau[j] = taus[assignment[j]];
-    choice_input choice;
-    choice.samples = &samples;
-    choice.colliding = &colliding;
-    choice.selected_family = result.selected_family;
-    choice.nominal = nominal;
-    // Safe means collision-free in continuous time, not only at the sample times: a minimal-effort
-    // choice lies at the edge of the safe set, where a corner can clip between samples.
-    choice.verify = [&](const maneuver& u) {
-      return options.reference
-                 ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
-                 : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
-    };
-    choice.nominal_safe = choice.verify(nominal);
-    choice.initial_speed = ego.speed;
-    choice.weights = config.effort;
-    choice.urgent_steering = config.urgent_steering;
-    if (const auto decision = choose_maneuver(choice)) {
+    if (const auto decision = choose(colliding, result.selected_family, [&](const maneuver& u) {
+          return options.reference
+                     ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
+                     : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
+        })) {
       result.command = decision->command;
       result.mode = decision->mode;
     } else {
