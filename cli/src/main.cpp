@@ -52,7 +52,9 @@ void add_scenario_options(CLI::App& command, scenario_options& o, bool with_poli
 /// The value of `--policy`: `adj`, `const:SECONDS` or `robust`; input_error for anything else.
 mm::forecast_policy policy_option(const std::string& text) {
   const std::optional<mm::forecast_policy> policy = sf::parse_policy(text);
-  if (!policy) throw mm::cli::input_error("--policy " + text + ": expected adj, const:SECONDS or robust, e.g. const:1.0");
+  if (!policy) {
+    throw mm::cli::input_error("--policy " + text + ": expected " + std::string(sf::policy_forms) + ", e.g. const:1.0");
+  }
   return *policy;
 }
 

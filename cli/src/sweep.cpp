@@ -470,13 +470,13 @@ sweep_spec load_sweep_text(std::string_view text, const std::string& source, con
 
   if (const YAML::Node policies = get("policies"); policies.IsDefined()) {
     if (!policies.IsSequence() || policies.size() == 0) {
-      in.fail_value(policies, "policies", "a non-empty list of policies: adj, const:SECONDS or robust");
+      in.fail_value(policies, "policies", "a non-empty list of policies: " + std::string(scenario_file::policy_forms));
     }
     std::set<std::string> seen;
     for (std::size_t i = 0; i < policies.size(); ++i) {
       const std::string field = "policies[" + std::to_string(i) + "]";
       const std::optional<mm::forecast_policy> policy = sf::parse_policy(in.text(policies[i], field));
-      if (!policy) in.fail_value(policies[i], field, "adj, const:SECONDS or robust, e.g. const:1.0");
+      if (!policy) in.fail_value(policies[i], field, std::string(scenario_file::policy_forms) + ", e.g. const:1.0");
       if (!seen.insert(sf::policy_name(*policy)).second) {
         in.fail(policies[i], field, "= " + reader::shown(policies[i]) + ": duplicate policy");
       }

@@ -166,7 +166,7 @@ void bind_config(py::module_& m) {
                      "τ [s] of the constant policy, on the forecast grid")
       .def_static("parse", [](const std::string& text) {
             const auto policy = scenario_file::parse_policy(text);
-            if (!policy) throw py::value_error("forecast policy '" + text + "': expected adj, const:SECONDS or robust");
+            if (!policy) throw py::value_error("forecast policy '" + text + "': expected " + std::string(scenario_file::policy_forms));
             return *policy;
           }, py::arg("text"), "From `adj`, `const:SECONDS` or `robust`, as on the command line.")
       .def("__str__", [](const forecast_policy& policy) { return scenario_file::policy_name(policy); });

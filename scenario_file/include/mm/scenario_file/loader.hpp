@@ -112,6 +112,9 @@ loaded_scenario load_file(const std::filesystem::path& file, const load_options&
 /// or `.yml` is a path; otherwise a built-in name if there is one, else a path.
 loaded_scenario load(std::string_view file_or_builtin, const load_options& options = {});
 
+/// The forms of a policy value `parse_policy` reads, for messages and help texts.
+inline constexpr std::string_view policy_forms = "adj, const:SECONDS or robust";
+
 /// Parses a `--policy` value: `adj`, `const:SECONDS` (e.g. `const:1.0`) or `robust`; none if malformed.
 std::optional<mm::forecast_policy> parse_policy(std::string_view text);
 
