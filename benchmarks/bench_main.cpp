@@ -1,9 +1,12 @@
 // maneuvermap_bench: the planner on fixed inputs captured from the built-in scenarios (from scratch,
-// and with one mm::planner kept as a vehicle planning every step keeps it), the reference planner on
-// the one-obstacle input, one whole S3 run and the first 4 s of the 50-vehicle roundabout
-// (docs/performance.md).
+// and with one mm::planner kept as a vehicle planning every step keeps it), the planner in the dense
+// traffic of the 50-vehicle roundabout (a saved input), the reference planner on the one-obstacle
+// input, one whole S3 run and the first 4 s of the 50-vehicle roundabout (docs/performance.md).
 //
-//   build/release/benchmarks/maneuvermap_bench [Google Benchmark flags]
+//   build/release/benchmarks/maneuvermap_bench [--whole-roundabout] [Google Benchmark flags]
+//
+// --whole-roundabout adds the roundabout's whole 20 s with two threads, once with the maps and once
+// without (about two minutes each on the machine of docs/performance.md).
 //
 // Each case runs several repetitions and reports their median and their maximum; `worst_us`
 // is the slowest single call seen in a repetition. The roundabout's `min` row holds the slowest
@@ -12,12 +15,16 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstring>
+#include <fstream>
 #include <map>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "captured_inputs.hpp"
+#include "mm/plan_input_json.hpp"
 #include "mm/planner.hpp"
 #include "mm/reference_planner.hpp"
 #include "mm/scenario_file/loader.hpp"
@@ -93,6 +100,35 @@ void plan_costliest_case(benchmark::State& state) {
   if (still_interacting(state, c, in)) timed_plan(state, in);
 }
 
+/// The dense-traffic input (`mm::bench::dense_following`), read from its saved file once per process;
+/// null, with the case skipped with an error, when the file cannot be read.
+const mm::plan_input* following_input(benchmark::State& state) {
+  static const std::pair<mm::plan_input, std::string> loaded = [] {
+    const std::string path = std::string(MM_SOURCE_DIR) + "/" + mm::bench::dense_following().file;
+    try {
+      std::ifstream file(path);
+      if (!file) throw std::runtime_error("cannot read the file");
+      return std::pair{mm::capture::plan_input_from_json(nlohmann::json::parse(file)), std::string()};
+    } catch (const std::exception& e) {
+      return std::pair{mm::plan_input{}, path + ": " + e.what()};
+    }
+  }();
+  if (loaded.second.empty()) return &loaded.first;
+  state.SkipWithError(loaded.second.c_str());
+  return nullptr;
+}
+
+void plan_following_case(benchmark::State& state) {
+  if (const mm::plan_input* in = following_input(state)) timed_plan(state, *in);
+}
+
+void planner_following_case(benchmark::State& state) {
+  const mm::plan_input* in = following_input(state);
+  if (in == nullptr) return;
+  mm::planner planner;
+  timed_loop(state, [&] { return planner.plan(*in); });
+}
+
 /// The captured input planned by one `mm::planner` every iteration, as a vehicle planning every step
 /// at an unchanged speed does: each call starts the planner again (its result is `mm::plan`'s, bit
 /// for bit) but keeps the sampled sets, the tree of blocks and the placements in the ego's frame.
@@ -165,7 +201,7 @@ benchmark::internal::Benchmark* repeated(benchmark::internal::Benchmark* b, int 
   return b->Repetitions(repetitions)->ComputeStatistics("max", largest)->ReportAggregatesOnly(true);
 }
 
-void register_all() {
+void register_all(bool whole_roundabout) {
   for (const mm::bench::captured_input& c : mm::bench::captured_inputs()) {
     repeated(benchmark::RegisterBenchmark("plan", plan_case), 5)
         ->ArgName("obstacles")
@@ -195,6 +231,9 @@ void register_all() {
         ->Args({accelerations, curvatures})
         ->Unit(benchmark::kMicrosecond);
   }
+  repeated(benchmark::RegisterBenchmark("plan_following", plan_following_case), 5)->Unit(benchmark::kMicrosecond);
+  repeated(benchmark::RegisterBenchmark("planner_following", planner_following_case), 5)
+      ->Unit(benchmark::kMicrosecond);
   repeated(benchmark::RegisterBenchmark("plan_reference", plan_reference_case), 3)
       ->ArgName("obstacles")
       ->Arg(1)
@@ -214,13 +253,33 @@ void register_all() {
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime()
       ->Iterations(1);
+  if (whole_roundabout) {
+    // The whole run, once each: the dense traffic of its later seconds costs far more than its start.
+    benchmark::RegisterBenchmark("sim/busy_roundabout", busy_roundabout)
+        ->ArgNames({"jobs", "seconds", "maps"})
+        ->Args({2, 20, 1})
+        ->Args({2, 20, 0})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(1);
+  }
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
   mm::sim::retain_freed_memory();  // as the command line does, so that sim/* measure what it runs
-  register_all();
+  bool whole_roundabout = false;
+  int kept = 1;
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--whole-roundabout") == 0) {
+      whole_roundabout = true;
+    } else {
+      argv[kept++] = argv[i];
+    }
+  }
+  argc = kept;
+  register_all(whole_roundabout);
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

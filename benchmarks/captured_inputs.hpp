@@ -25,4 +25,14 @@ const captured_input& captured(std::size_t interacting);
 /// `captured(1)`: the `plan_costliest` case.
 const captured_input& costliest_one_obstacle();
 
+/// A planning input saved with `maneuvermap_capture --save`: replaying it would simulate too long.
+struct saved_input {
+  const char* file;  ///< JSON file, relative to the source tree
+  const char* why;   ///< how the instant was chosen
+};
+
+/// A plan in the dense traffic of the 50-vehicle roundabout, late in the run, where it is costliest:
+/// the `plan_following` and `planner_following` cases.
+const saved_input& dense_following();
+
 }  // namespace mm::bench

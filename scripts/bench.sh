@@ -4,7 +4,10 @@
 #      1 and 2 planning threads; JSON in out/bench/bench.json) and draws the cost chart
 #      docs/figures/performance/cost-growth.png;
 #   2. with --full also: the multi-obstacle search agreement (1100 random scenes with 2 and with 3
-#      obstacles) and the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time. Logs in out/bench/.
+#      obstacles), the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time, and the whole 20 s of
+#      the roundabout s6 with 2 threads: its real-time factor with and without the maps
+#      (maneuvermap_bench --whole-roundabout) and its planning cost per simulated second (a run with
+#      --timing). Logs in out/bench/. About 12 minutes on the machine of docs/performance.md.
 #   bash scripts/bench.sh [--full]
 # Run it on an otherwise idle machine: the timings are wall-clock.
 set -euo pipefail
@@ -48,4 +51,10 @@ if [[ "${1:-}" == "--full" ]]; then
     cmp "$out/table1-jobs1-pair1/runs.csv" "$out/$run/runs.csv"
   done
   echo "runs.csv identical in all four runs" | tee -a "$out/sweeps.txt"
+  echo "== the whole roundabout s6, 2 threads: real-time factor, and cost per simulated second" >&2
+  ./build/release/benchmarks/maneuvermap_bench --whole-roundabout '--benchmark_filter=busy_roundabout/jobs:2/seconds:20' \
+    --benchmark_out="$out/whole-roundabout.json" --benchmark_out_format=json | tee "$out/whole-roundabout.txt"
+  timed "s6-busy-roundabout --jobs 2 --timing (the maps and the output files included)" \
+    ./build/release/cli/maneuvermap run s6-busy-roundabout --jobs 2 --timing --out "$out/s6-timing"
+  /usr/bin/python3 tools/many_agents/cost_per_second.py "$out/s6-timing/decisions.csv" | tee "$out/s6-per-second.md"
 fi
