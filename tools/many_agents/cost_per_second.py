@@ -12,22 +12,27 @@ import statistics
 import sys
 
 
+def fail(message):
+    print(f"cost_per_second.py: error: {message}", file=sys.stderr)
+    sys.exit(2)
+
+
 def main(path):
     per_second = {}
     with open(path, newline="") as f:
         reader = csv.DictReader(f)
         if reader.fieldnames is None or "cpu_us" not in reader.fieldnames or "t" not in reader.fieldnames:
-            raise SystemExit(f"{path}: expected the columns t and cpu_us of a decisions.csv")
+            fail(f"{path}: expected the columns t and cpu_us of a decisions.csv")
         for line, row in enumerate(reader, start=2):
             try:
                 t, cpu = float(row["t"]), float(row["cpu_us"])
-            except ValueError:
-                raise SystemExit(f"{path}:{line}: t and cpu_us must be numbers, got {row['t']!r}, {row['cpu_us']!r}")
+            except (TypeError, ValueError):
+                fail(f"{path}:{line}: t and cpu_us must be numbers, got {row['t']!r}, {row['cpu_us']!r}")
             if not (math.isfinite(t) and math.isfinite(cpu)):
-                raise SystemExit(f"{path}:{line}: t and cpu_us must be finite, got {row['t']!r}, {row['cpu_us']!r}")
+                fail(f"{path}:{line}: t and cpu_us must be finite, got {row['t']!r}, {row['cpu_us']!r}")
             per_second.setdefault(math.floor(t + 1e-9), []).append(cpu)
     if not per_second or all(c == 0.0 for cs in per_second.values() for c in cs):
-        raise SystemExit(f"{path}: no CPU times (run the scenario with --timing)")
+        fail(f"{path}: no CPU times (run the scenario with --timing)")
     print("| simulated second | plans | planning CPU s | mean µs per plan | median µs per plan |")
     print("|---|---|---|---|---|")
     for second in sorted(per_second):
@@ -39,5 +44,8 @@ def main(path):
 
 if __name__ == "__main__":
     if len(sys.argv) != 2:
-        raise SystemExit("usage: cost_per_second.py DECISIONS.csv")
-    main(sys.argv[1])
+        fail("expected one argument, the decisions.csv of a run made with --timing")
+    try:
+        main(sys.argv[1])
+    except OSError as e:
+        fail(f"{sys.argv[1]}: cannot read: {e.strerror}")
