@@ -133,8 +133,11 @@ void bind_commonroad(py::module_& m) {
   m.def("read_scenario_text", &cr::read_scenario_text, py::arg("text"), py::arg("source") = "<text>",
         py::call_guard<py::gil_scoped_release>(), "As read_scenario, from the XML text itself.");
 
-  py::class_<cr::measured_step>(m, "measured_step", "The planner's view of the measured road user at one step.")
-      .def_readonly("step", &cr::measured_step::step)
+  py::class_<cr::measured_step> step_type(m, "measured_step",
+                                          "The planner's view of the measured road user at one step.");
+  pickled_by_members(step_type, &cr::measured_step::step, &cr::measured_step::time, &cr::measured_step::ego,
+                     &cr::measured_step::recorded, &cr::measured_step::obstacle_ids, &cr::measured_step::result);
+  step_type.def_readonly("step", &cr::measured_step::step)
       .def_readonly("time", &cr::measured_step::time, "[s]")
       .def_readonly("ego", &cr::measured_step::ego, "as recorded")
       .def_readonly("recorded", &cr::measured_step::recorded, "what it did next: the planner's u_nom")
@@ -144,8 +147,9 @@ void bind_commonroad(py::module_& m) {
         return "measured_step(step=" + std::to_string(s.step) +
                ", room=" + py::repr(py::float_(cr::room(s.result))).cast<std::string>() + ")";
       });
-  py::class_<cr::measurement>(m, "measurement", "Every recorded step of one road user, planned on.")
-      .def_readonly("agent", &cr::measurement::agent)
+  py::class_<cr::measurement> measurement_type(m, "measurement", "Every recorded step of one road user, planned on.");
+  pickled_by_members(measurement_type, &cr::measurement::agent, &cr::measurement::steps);
+  measurement_type.def_readonly("agent", &cr::measurement::agent)
       .def_readonly("steps", &cr::measurement::steps)
       .def_property_readonly("times", [](const cr::measurement& r) {
         std::vector<double> t;

@@ -225,16 +225,20 @@ void bind_result(py::module_& m) {
       .value("urgent", planning_mode::urgent)
       .value("near_crash", planning_mode::near_crash);
 
-  py::class_<obstacle_assessment>(m, "obstacle_assessment", "How the planner saw one obstacle.")
-      .def_readonly("id", &obstacle_assessment::id)
+  py::class_<obstacle_assessment> oa(m, "obstacle_assessment", "How the planner saw one obstacle.");
+  pickled_by_members(oa, &obstacle_assessment::id, &obstacle_assessment::relevant, &obstacle_assessment::motion,
+                     &obstacle_assessment::time_to_collision, &obstacle_assessment::forecast_index);
+  oa.def_readonly("id", &obstacle_assessment::id)
       .def_readonly("relevant", &obstacle_assessment::relevant, "False: too far to reach within T_c (spec §9)")
       .def_readonly("motion", &obstacle_assessment::motion)
       .def_readonly("time_to_collision", &obstacle_assessment::time_to_collision, "[s], inf for none")
       .def_readonly("forecast_index", &obstacle_assessment::forecast_index, "its forecast time (spec §9)")
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
 
-  py::class_<plan_work>(m, "plan_work", "How much collision work the step did (docs/performance.md).")
-      .def_readonly("relevant_obstacles", &plan_work::relevant_obstacles)
+  py::class_<plan_work> pw(m, "plan_work", "How much collision work the step did (docs/performance.md).");
+  pickled_by_members(pw, &plan_work::relevant_obstacles, &plan_work::bound_checks, &plan_work::distance_evaluations,
+                     &plan_work::refinements, &plan_work::translation_minima, &plan_work::assignments_evaluated);
+  pw.def_readonly("relevant_obstacles", &plan_work::relevant_obstacles)
       .def_readonly("bound_checks", &plan_work::bound_checks)
       .def_readonly("distance_evaluations", &plan_work::distance_evaluations)
       .def_readonly("refinements", &plan_work::refinements)
@@ -242,9 +246,12 @@ void bind_result(py::module_& m) {
       .def_readonly("assignments_evaluated", &plan_work::assignments_evaluated)
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
 
-  py::class_<sample_snapshot>(m, "sample_snapshot",
-                              "The sampled maneuvers of a step and their safety (plan_input.config.record_samples).")
-      .def_property_readonly("accelerations", [](const sample_snapshot& s) {
+  py::class_<sample_snapshot> ss(
+      m, "sample_snapshot", "The sampled maneuvers of a step and their safety (plan_input.config.record_samples).");
+  pickled_by_members(ss, &sample_snapshot::maneuvers, &sample_snapshot::families, &sample_snapshot::end_points,
+                     &sample_snapshot::area_weights, &sample_snapshot::on_nominal_curvature,
+                     &sample_snapshot::safe_by_forecast, &sample_snapshot::safe_selected);
+  ss.def_property_readonly("accelerations", [](const sample_snapshot& s) {
         std::vector<double> a;
         for (const maneuver& u : s.maneuvers) a.push_back(u.acceleration);
         return array_of(a);
@@ -276,8 +283,14 @@ void bind_result(py::module_& m) {
       .def_property_readonly("safe_selected", [](const sample_snapshot& s) { return flags_of(s.safe_selected); },
                              "safe under the selected forecast times");
 
-  py::class_<plan_result>(m, "plan_result", "Everything one planning step computes (spec §6–§9).")
-      .def_readonly("status", &plan_result::status)
+  py::class_<plan_result> pr(m, "plan_result", "Everything one planning step computes (spec §6–§9).");
+  pickled_by_members(pr, &plan_result::status, &plan_result::error, &plan_result::command, &plan_result::mode,
+                     &plan_result::selected_family, &plan_result::forecast_time, &plan_result::forecast_index,
+                     &plan_result::mi_brake_selected, &plan_result::mi_accelerate_selected, &plan_result::robust,
+                     &plan_result::forecast_times, &plan_result::mi_brake, &plan_result::mi_accelerate,
+                     &plan_result::excluded, &plan_result::time_to_collision, &plan_result::collision_time_step,
+                     &plan_result::obstacles, &plan_result::samples, &plan_result::work);
+  pr.def_readonly("status", &plan_result::status)
       .def_readonly("error", &plan_result::error)
       .def_readonly("command", &plan_result::command, "the chosen u")
       .def_readonly("mode", &plan_result::mode, "which rule of spec §8 chose it")

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -82,6 +83,27 @@ py::class_<Vector, Options...>& compared_by_elements(py::class_<Vector, Options.
                      Vector values;
                      for (py::handle item : items) values.push_back(item.cast<typename Vector::value_type>());
                      return values;
+                   }));
+  return c;
+}
+
+/// Pickling by C++ members, for a type that Python only reads (a result): its state is the tuple of
+/// the Python values of `members`, each of which pickles (numbers, strings, lists, None, enums, and
+/// the bound types that pickle by their fields or their members). Name every member: a member left
+/// out comes back with its default (tests/python compares every attribute of a round trip).
+template <class T, class... Options, class... Members>
+py::class_<T, Options...>& pickled_by_members(py::class_<T, Options...>& c, Members T::*... members) {
+  c.def(py::pickle([members...](const T& self) { return py::make_tuple(py::cast(self.*members)...); },
+                   [members...](const py::tuple& state) {
+                     if (state.size() != sizeof...(Members)) {
+                       throw std::runtime_error("cannot unpickle: expected a state of " +
+                                                std::to_string(sizeof...(Members)) + " members, got " +
+                                                std::to_string(state.size()));
+                     }
+                     T value;
+                     std::size_t i = 0;
+                     ((value.*members = state[i++].template cast<Members>()), ...);
+                     return value;
                    }));
   return c;
 }

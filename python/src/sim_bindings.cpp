@@ -286,13 +286,17 @@ void bind_simulation(py::module_& m) {
       .value("left", sim::bypass_side::left)
       .value("right", sim::bypass_side::right);
 
-  py::class_<sim::agent_info>(m, "agent_info", "The fixed description of an agent.")
-      .def_readonly("name", &sim::agent_info::name)
+  py::class_<sim::agent_info> info(m, "agent_info", "The fixed description of an agent.");
+  pickled_by_members(info, &sim::agent_info::name, &sim::agent_info::kind, &sim::agent_info::shape);
+  info.def_readonly("name", &sim::agent_info::name)
       .def_readonly("kind", &sim::agent_info::kind)
       .def_readonly("shape", &sim::agent_info::shape, "about its reference point")
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
-  py::class_<sim::agent_state>(m, "agent_state", "The true state of an agent at the current time.")
-      .def_readonly("status", &sim::agent_state::status)
+  py::class_<sim::agent_state> state(m, "agent_state", "The true state of an agent at the current time.");
+  pickled_by_members(state, &sim::agent_state::status, &sim::agent_state::pose, &sim::agent_state::speed,
+                     &sim::agent_state::acceleration, &sim::agent_state::curvature, &sim::agent_state::arc_length,
+                     &sim::agent_state::lateral_offset);
+  state.def_readonly("status", &sim::agent_state::status)
       .def_readonly("pose", &sim::agent_state::pose, "[m], heading wrapped to (−π, π]")
       .def_readonly("speed", &sim::agent_state::speed, "[m/s]")
       .def_readonly("acceleration", &sim::agent_state::acceleration, "over the coming step [m/s²]")
@@ -301,18 +305,28 @@ void bind_simulation(py::module_& m) {
       .def_readonly("lateral_offset", &sim::agent_state::lateral_offset, "from its path [m], left positive")
       .def("present", &sim::agent_state::present, "observed and collidable")
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
-  py::class_<sim::plan_record>(m, "plan_record", "The last planning step of a planning vehicle.")
-      .def_readonly("time", &sim::plan_record::time, "[s]")
+  py::class_<sim::plan_record> plan(m, "plan_record", "The last planning step of a planning vehicle.");
+  pickled_by_members(plan, &sim::plan_record::time, &sim::plan_record::result, &sim::plan_record::cpu_time_us);
+  plan.def_readonly("time", &sim::plan_record::time, "[s]")
       .def_readonly("result", &sim::plan_record::result)
       .def_readonly("cpu_time_us", &sim::plan_record::cpu_time_us, "[µs]; 0 unless measured")
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
-  py::class_<sim::crash_event>(m, "crash_event", "An overlap of two agents, one of them a planning vehicle.")
-      .def_readonly("time", &sim::crash_event::time, "[s]")
+  py::class_<sim::crash_event> crash(m, "crash_event", "An overlap of two agents, one of them a planning vehicle.");
+  pickled_by_members(crash, &sim::crash_event::time, &sim::crash_event::first, &sim::crash_event::second);
+  crash.def_readonly("time", &sim::crash_event::time, "[s]")
       .def_readonly("first", &sim::crash_event::first)
       .def_readonly("second", &sim::crash_event::second)
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
-  py::class_<sim::run_metrics>(m, "run_metrics", "The run metrics of one planning vehicle (spec §12).")
-      .def_readonly("agent", &sim::run_metrics::agent)
+  py::class_<sim::run_metrics> metrics(m, "run_metrics", "The run metrics of one planning vehicle (spec §12).");
+  pickled_by_members(metrics, &sim::run_metrics::agent, &sim::run_metrics::crash, &sim::run_metrics::crash_time_s,
+                     &sim::run_metrics::crash_with, &sim::run_metrics::min_dist_m, &sim::run_metrics::min_dist_time_s,
+                     &sim::run_metrics::closest_agent, &sim::run_metrics::ttc_at_min_s, &sim::run_metrics::speed_kmh,
+                     &sim::run_metrics::bypass, &sim::run_metrics::lateral_offset_at_min_m,
+                     &sim::run_metrics::max_lateral_offset_m, &sim::run_metrics::min_speed_kmh,
+                     &sim::run_metrics::max_speed_kmh, &sim::run_metrics::time_in_brake_s,
+                     &sim::run_metrics::time_in_accel_s, &sim::run_metrics::planning_steps,
+                     &sim::run_metrics::cpu_median_us, &sim::run_metrics::cpu_p99_us);
+  metrics.def_readonly("agent", &sim::run_metrics::agent)
       .def_readonly("crash", &sim::run_metrics::crash)
       .def_readonly("crash_time_s", &sim::run_metrics::crash_time_s)
       .def_readonly("crash_with", &sim::run_metrics::crash_with)
@@ -374,9 +388,14 @@ void bind_simulation(py::module_& m) {
       .def("all_metrics", &sim::simulation::all_metrics)
       .def("run", [](sim::simulation& s) { sim::run(s); }, "Steps to the end.");
 
-  py::class_<map_record>(m, "map_record",
-                         "The Maneuverability Map of one planning vehicle over a run: a row per planning step.")
-      .def_readonly("agent", &map_record::agent)
+  py::class_<map_record> map_type(
+      m, "map_record", "The Maneuverability Map of one planning vehicle over a run: a row per planning step.");
+  pickled_by_members(map_type, &map_record::agent, &map_record::times, &map_record::forecast_times,
+                     &map_record::mi_brake, &map_record::mi_accelerate, &map_record::excluded,
+                     &map_record::forecast_time, &map_record::selected_family, &map_record::mode,
+                     &map_record::time_to_collision, &map_record::command_acceleration,
+                     &map_record::command_curvature, &map_record::cpu_time_us, &map_record::robust);
+  map_type.def_readonly("agent", &map_record::agent)
       .def_property_readonly("times", [](const map_record& r) { return array_of(r.times); }, "[s], shape (steps,)")
       .def_property_readonly("forecast_times", [](const map_record& r) { return array_of(r.forecast_times); },
                              "τ_i [s]")
@@ -409,10 +428,15 @@ void bind_simulation(py::module_& m) {
                std::to_string(r.times.size()) + " planning steps)";
       });
 
-  py::class_<run_record>(m, "run_record",
-                         "A whole run: every agent's state at every step (arrays of shape (steps, agents)), "
-                         "every planning vehicle's map, the metrics and the crashes.")
-      .def_readonly("scenario", &run_record::scenario, "its name")
+  py::class_<run_record> run(m, "run_record",
+                             "A whole run: every agent's state at every step (arrays of shape (steps, agents)), "
+                             "every planning vehicle's map, the metrics and the crashes.");
+  pickled_by_members(run, &run_record::scenario, &run_record::source, &run_record::agents, &run_record::times,
+                     &run_record::agent_count, &run_record::x, &run_record::y, &run_record::heading,
+                     &run_record::speed, &run_record::acceleration, &run_record::curvature, &run_record::arc_length,
+                     &run_record::lateral_offset, &run_record::status, &run_record::maps, &run_record::metrics,
+                     &run_record::crashes);
+  run.def_readonly("scenario", &run_record::scenario, "its name")
       .def_readonly("source", &run_record::source)
       .def_readonly("agents", &run_record::agents, "in id order: planning vehicles first")
       .def_property_readonly("times", [](const run_record& r) { return array_of(r.times); }, "t_k [s]")

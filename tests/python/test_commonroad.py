@@ -1,8 +1,11 @@
 """CommonRoad recordings from Python: read, measure, and the same room as the planner (docs/python.md)."""
+import pickle
+
 import numpy as np
 import pytest
 
 import maneuvermap as mm
+from conftest import assert_same_attributes
 
 PEDESTRIAN_COLLISION = "data/commonroad/OSC_PedestrianCollision-1_1_T-1.xml"
 
@@ -42,6 +45,13 @@ def test_the_car_of_the_pedestrian_collision_runs_out_of_room(source_dir):
     measured = mm.commonroad.measure(s, car)
     assert measured.rooms[0] > 0.5
     assert measured.rooms.min() == 0.0
+
+
+def test_a_measurement_pickles_with_every_attribute(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
+    measured = mm.commonroad.measure(s, mm.commonroad.recorded_ego(s, s.planning_problems[0]))
+    assert measured.agent != 0 and measured.steps[-1].step > 0 and measured.steps[-1].obstacle_ids
+    assert_same_attributes(measured, pickle.loads(pickle.dumps(measured)), "measurement")
 
 
 def test_bad_files_and_unknown_road_users_raise_value_errors_that_say_where(source_dir):

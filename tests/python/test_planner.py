@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import maneuvermap as mm
-from conftest import crossing_scene
+from conftest import assert_same_attributes, crossing_scene
 
 
 def test_a_scene_without_obstacles_leaves_all_the_room_and_keeps_the_nominal_maneuver():
@@ -163,6 +163,26 @@ def test_value_types_pickle_by_their_fields_and_plan_the_same_in_another_process
     expected = plan_command(scene)
     with concurrent.futures.ProcessPoolExecutor(2, mp_context=multiprocessing.get_context("spawn")) as pool:
         assert list(pool.map(plan_command, [scene, copy])) == [expected, expected]
+
+
+def plan_in_worker(scene):
+    """What a worker process returns: the whole result."""
+    return mm.plan(scene)
+
+
+def test_a_result_pickles_with_every_attribute_and_comes_back_whole_from_another_process():
+    scene = crossing_scene()
+    scene.config = mm.planner_config(policy=mm.forecast_policy.parse("robust"), record_samples=True)
+    result = mm.plan(scene)
+    # Members that a round trip which dropped them would give back at their defaults.
+    assert result.robust and result.mode == mm.planning_mode.avoid and result.forecast_index > 0
+    assert result.command != mm.maneuver() and result.mi_brake_selected < 1.0 and result.mi_accelerate_selected < 1.0
+    assert math.isfinite(result.time_to_collision) and result.collision_time_step > 0.0
+    assert result.obstacles[0].relevant and result.obstacles[0].forecast_index > 0 and result.work.bound_checks > 0
+    assert result.samples is not None and not result.samples.safe_selected.all()
+    assert_same_attributes(result, pickle.loads(pickle.dumps(result)), "plan_result")
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        assert_same_attributes(result, pool.submit(plan_in_worker, scene).result(), "plan_result from a worker")
 
 
 def test_recorded_samples_come_as_arrays_of_one_length_and_the_command_is_a_safe_sample():

@@ -1,12 +1,16 @@
 """The simulator from Python: a run gives what `maneuvermap run` writes, as arrays (docs/python.md)."""
+import concurrent.futures
 import csv
+import multiprocessing
 import pathlib
+import pickle
 import subprocess
 
 import numpy as np
 import pytest
 
 import maneuvermap as mm
+from conftest import assert_same_attributes
 
 
 def read_csv(path):
@@ -170,3 +174,26 @@ def test_run_takes_a_name_a_path_a_loaded_scenario_or_a_scenario_and_refuses_any
         mm.sim.run(42)
     with pytest.raises(ValueError, match="apply when loading"):
         mm.sim.run(loaded, seed=3)
+
+
+def run_in_worker(name):
+    """What a worker process of a Monte-Carlo study returns: the whole run record."""
+    return mm.sim.run(name)
+
+
+def test_a_run_record_pickles_with_every_attribute_and_comes_back_whole_from_another_process():
+    record = mm.sim.run("s3-left-turn")  # A crashes into B under ADJ at the scenario's defaults
+    assert record.crashes and record.metrics[0].crash and record.metrics[0].crash_time_s is not None
+    assert len(record.maps[0].times) > 0 and record.maps[0].excluded.any()
+    assert_same_attributes(record, pickle.loads(pickle.dumps(record)), "run_record")
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        assert_same_attributes(record, pool.submit(run_in_worker, "s3-left-turn").result(), "run_record from a worker")
+
+
+def test_a_simulations_states_and_last_plan_pickle_with_every_attribute():
+    sim = mm.sim.simulation(mm.sim.load("s3-left-turn").scenario)
+    while not sim.planned_now(0) or sim.last_plan(0).result.mode == mm.planning_mode.nominal:
+        sim.step()
+    for value in (sim.info(0), sim.state(0), sim.last_plan(0)):
+        assert_same_attributes(value, pickle.loads(pickle.dumps(value)), type(value).__name__)
+    assert sim.state(0).speed > 0.0 and sim.last_plan(0).time > 0.0
