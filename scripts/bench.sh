@@ -7,7 +7,7 @@
 #      obstacles), the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time, and the whole 20 s of
 #      the roundabout s6 with 2 threads: its real-time factor with and without the maps
 #      (maneuvermap_bench --whole-roundabout) and its planning cost per simulated second (a run with
-#      --timing). Logs in out/bench/. About 12 minutes on the machine of docs/performance.md.
+#      --timing; the chart docs/figures/performance/s6-cost-per-second.png). Logs in out/bench/. About 12 minutes on the machine of docs/performance.md.
 #   bash scripts/bench.sh [--full]
 # Run it on an otherwise idle machine: the timings are wall-clock.
 set -euo pipefail
@@ -56,5 +56,6 @@ if [[ "${1:-}" == "--full" ]]; then
     --benchmark_out="$out/whole-roundabout.json" --benchmark_out_format=json | tee "$out/whole-roundabout.txt"
   timed "s6-busy-roundabout --jobs 2 --timing (the maps and the output files included)" \
     ./build/release/cli/maneuvermap run s6-busy-roundabout --jobs 2 --timing --out "$out/s6-timing"
-  /usr/bin/python3 tools/many_agents/cost_per_second.py "$out/s6-timing/decisions.csv" | tee "$out/s6-per-second.md"
+  /usr/bin/python3 tools/many_agents/cost_per_second.py "$out/s6-timing/decisions.csv" \
+    --plot docs/figures/performance/s6-cost-per-second.png | tee "$out/s6-per-second.md"
 fi
