@@ -11,6 +11,7 @@ packages=(
   libgoogle-perftools-dev             # tcmalloc, the executables' allocator (docs/performance.md)
   python3 python3-matplotlib python3-numpy
   python3-dev pybind11-dev python3-pytest  # the Python module maneuvermap and its tests (docs/python.md)
+  python3-mypy  # its type stubs checked: mypy and stubtest (tests/python/CMakeLists.txt)
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -11,8 +11,13 @@ if(PRELOAD)
   set(ENV{LD_PRELOAD} ${PRELOAD})  # the sanitizer build: see tests/python/CMakeLists.txt
 endif()
 execute_process(COMMAND ${PYTHON} -c [=[
+import pathlib
 import maneuvermap as mm
 assert mm.__file__.startswith(r""), mm.__file__
+package = pathlib.Path(mm.__file__).parent
+for typed in ("py.typed", "__init__.pyi", "sim.pyi", "commonroad.pyi", "_maneuvermap/__init__.pyi",
+              "_maneuvermap/sim.pyi", "_maneuvermap/commonroad.pyi"):
+    assert (package / typed).is_file(), f"{typed} is not installed"
 result = mm.plan(mm.plan_input(ego=mm.ego_state(speed=10.0)))
 assert list(result.mi_brake) == [1.0] * 17
 run = mm.sim.run("s1-crossing")

@@ -42,6 +42,7 @@ def test_a_measurement_is_the_planner_on_the_recorded_inputs_bit_for_bit(source_
 def test_the_car_of_the_pedestrian_collision_runs_out_of_room(source_dir):
     s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
     car = mm.commonroad.recorded_ego(s, s.planning_problems[0])
+    assert car is not None
     measured = mm.commonroad.measure(s, car)
     assert measured.rooms[0] > 0.5
     assert measured.rooms.min() == 0.0
@@ -49,7 +50,9 @@ def test_the_car_of_the_pedestrian_collision_runs_out_of_room(source_dir):
 
 def test_a_measurement_pickles_with_every_attribute(source_dir):
     s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
-    measured = mm.commonroad.measure(s, mm.commonroad.recorded_ego(s, s.planning_problems[0]))
+    car = mm.commonroad.recorded_ego(s, s.planning_problems[0])
+    assert car is not None
+    measured = mm.commonroad.measure(s, car)
     assert measured.agent != 0 and measured.steps[-1].step > 0 and measured.steps[-1].obstacle_ids
     assert_same_attributes(measured, pickle.loads(pickle.dumps(measured)), "measurement")
 

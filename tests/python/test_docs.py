@@ -14,7 +14,7 @@ def test_the_python_blocks_of_the_page_run_in_order_from_the_repository_root(pag
     blocks = python_blocks((source_dir / page).read_text())
     assert blocks, f"{page} has no Python block"
     monkeypatch.chdir(source_dir)
-    namespace = {}
+    namespace: dict[str, object] = {}
     for number, block in enumerate(blocks, start=1):
         try:
             exec(compile(block, f"{page}, Python block {number}", "exec"), namespace)

@@ -79,7 +79,7 @@ def test_one_planner_shared_by_threads_gives_every_thread_the_result_of_plan():
     kept = mm.planner()
     scenes = [crossing_scene(ego_speed=v) for v in (8.0, 10.0, 12.0, 14.0)]
     expected = [mm.plan(scene).mi_brake.tobytes() for scene in scenes]
-    results = [None] * len(scenes)
+    results: list[bytes | None] = [None] * len(scenes)
 
     def work(i):
         for _ in range(3):
@@ -109,11 +109,11 @@ def test_obstacles_and_observations_appended_in_place_are_planned_on():
 def test_an_obstacle_observed_once_needs_its_motion():
     scene = mm.plan_input(ego=mm.ego_state(speed=10.0))
     track = mm.obstacle_track(id=3, history=[mm.observation(0.0, mm.pose(15.0, 0.0, math.pi), 5.0)])
-    scene.obstacles = [track]
+    scene.obstacles = [track]  # type: ignore[assignment]  # converted; Debian 12's mypy 1.0 checks against the getter
     with pytest.raises(ValueError, match="obstacles\\[0\\]"):
         mm.plan(scene)
     track.motion = mm.motion_estimate(pose=mm.pose(15.0, 0.0, math.pi), speed=5.0, yaw_rate=0.0)
-    scene.obstacles = [track]
+    scene.obstacles = [track]  # type: ignore[assignment]  # converted; Debian 12's mypy 1.0 checks against the getter
     assert mm.plan(scene).obstacles[0].relevant
 
 
@@ -190,6 +190,7 @@ def test_recorded_samples_come_as_arrays_of_one_length_and_the_command_is_a_safe
     scene.config.record_samples = True
     result = mm.plan(scene)
     samples = result.samples
+    assert samples is not None
     count = len(samples.accelerations)
     assert len(samples.families) == len(samples.curvatures) == count
     assert count >= 2 * 15 * 21  # both families' grids, and their nominal-curvature columns

@@ -93,12 +93,16 @@ def test_a_change_of_a_planning_vehicle_through_the_loaded_scenario_changes_the_
 def test_the_planning_input_of_a_vehicle_plans_in_python_as_the_vehicle_planned():
     simulation = mm.sim.simulation(mm.sim.load("s3-left-turn"))
     a = simulation.find("A")
+    assert a is not None
     compared = 0
     while not simulation.ended() and compared < 3:
         simulation.step()
         if simulation.planned_now(a) and simulation.step_index % 100 == 0:
-            mine = mm.plan(simulation.planning_input(a))
-            theirs = simulation.last_plan(a).result
+            scene = simulation.planning_input(a)
+            last = simulation.last_plan(a)
+            assert scene is not None and last is not None
+            mine = mm.plan(scene)
+            theirs = last.result
             assert mine.command == theirs.command
             assert mine.mi_brake.tobytes() == theirs.mi_brake.tobytes()
             assert mine.mi_accelerate.tobytes() == theirs.mi_accelerate.tobytes()
@@ -142,7 +146,7 @@ def test_a_run_without_map_columns_makes_the_same_decisions_and_keeps_no_indices
 def test_the_scene_geometry_comes_with_the_loaded_scenario():
     roundabout = mm.sim.load("s2-roundabout")
     ring = roundabout.roundabout
-    assert ring.radius > 0
+    assert ring is not None and ring.radius > 0
     a = roundabout.scenario.planning_vehicles[0]
     path = a.path_points(spacing=1.0)
     assert path.shape[1] == 2 and len(path) > 10
@@ -192,8 +196,11 @@ def test_a_run_record_pickles_with_every_attribute_and_comes_back_whole_from_ano
 
 def test_a_simulations_states_and_last_plan_pickle_with_every_attribute():
     sim = mm.sim.simulation(mm.sim.load("s3-left-turn").scenario)
-    while not sim.planned_now(0) or sim.last_plan(0).result.mode == mm.planning_mode.nominal:
+    while True:
+        last = sim.last_plan(0)
+        if sim.planned_now(0) and last is not None and last.result.mode != mm.planning_mode.nominal:
+            break
         sim.step()
-    for value in (sim.info(0), sim.state(0), sim.last_plan(0)):
+    for value in (sim.info(0), sim.state(0), last):
         assert_same_attributes(value, pickle.loads(pickle.dumps(value)), type(value).__name__)
-    assert sim.state(0).speed > 0.0 and sim.last_plan(0).time > 0.0
+    assert sim.state(0).speed > 0.0 and last.time > 0.0

@@ -28,7 +28,8 @@ def main(files, policy):
     for file in files:
         recording = mm.commonroad.read_scenario(file)
         start = time.perf_counter()
-        driven, refused, crashes = 0, [], {False: [], True: []}
+        driven, refused = 0, []
+        crashes: dict[bool, list[int]] = {False: [], True: []}
         for agent in mm.commonroad.measurable_road_users(recording):
             try:
                 runs = {avoid: mm.sim.run(mm.commonroad.replay_scenario(recording, agent, avoidance=avoid, policy=policy),

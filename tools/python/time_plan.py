@@ -27,9 +27,11 @@ def median_and_max_us(call, calls=400, repetitions=5):
 def main():
     simulation = mm.sim.simulation(mm.sim.load("s3-left-turn"))
     a = simulation.find("A")
+    assert a is not None, "s3-left-turn has no agent A"
     while simulation.time < 4.80 - 1e-9:
         simulation.step()
     scene = simulation.planning_input(a)
+    assert scene is not None, "A does not plan at 4.80 s"
     result = mm.plan(scene)
     print(f"S3 at {simulation.time:.2f} s: {result.work.relevant_obstacles} relevant obstacle, "
           f"{result.work.bound_checks} bound checks (the benchmark input has 18673)")
