@@ -538,6 +538,17 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   }
   window.time_step = std::min(window.time_step, config.collision_window);
   result.collision_time_step = window.time_step;
+  // The tunneling bound can shorten the step below config.max_time_step: the pairs held stay bounded.
+  if (const double maneuvers = sampled_maneuver_count(options.resolution),
+      times = sample_time_count(config.collision_window, window.time_step);
+      maneuvers * times > largest_sample_time_pairs) {
+    return invalid("config.collision_window = " + three_digits(config.collision_window) +
+                   " s at the collision time step of " + three_digits(window.time_step) +
+                   " s the tunneling bound of spec §5 needs with the relevant obstacles: " + three_digits(times) +
+                   " sample times for " + three_digits(maneuvers) +
+                   " sampled maneuvers exceed the 5e8 pairs a planning step may hold; expected a shorter window, "
+                   "a coarser resolution, or road users that are larger or slower");
+  }
 
   if (n == 0 && !options.reference && !config.record_samples) {
     // Nothing can reach the ego: every index is 1 and the nominal maneuver is safe (spec §9: far

@@ -4,6 +4,7 @@
 #include <string>
 #include <type_traits>
 
+#include "mm/collision.hpp"
 #include "mm/planner.hpp"
 
 namespace mm {
@@ -101,6 +102,8 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.positive("config.forecast_step", k.forecast_step, "seconds");
   c.require(k.forecast_count >= 1, "config.forecast_count", static_cast<double>(k.forecast_count),
             "at least 1 (the forecast grid is empty)");
+  c.require(k.forecast_count <= largest_forecast_count, "config.forecast_count", static_cast<double>(k.forecast_count),
+            "at most 1000");
   const double largest_forecast = static_cast<double>(k.forecast_count == 0 ? 0 : k.forecast_count - 1) * k.forecast_step;
   c.require(!(largest_forecast > k.collision_window + 1e-9), "config.forecast_count", static_cast<double>(k.forecast_count),
             [&] {
@@ -117,6 +120,23 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.require(k.resolution.curvatures >= 1 && k.resolution.curvatures <= 2001, "config.resolution.curvatures",
             static_cast<double>(k.resolution.curvatures), "an integer from 1 to 2001");
   c.positive("config.max_time_step", k.max_time_step, "seconds");
+  c.require(!(k.max_time_step < smallest_collision_time_step), "config.max_time_step", k.max_time_step,
+            "at least 0.0001 s, the shortest collision time step the planner takes");
+  if (!c.error) {
+    // The window's sample times for every sampled maneuver: bounded, like the resolution.
+    const double maneuvers = sampled_maneuver_count(k.resolution);
+    const double times = sample_time_count(k.collision_window, k.max_time_step);
+    c.require(!(maneuvers * times > largest_sample_time_pairs), "config.collision_window", k.collision_window, [&] {
+      // Four significant digits, rounded down: still within the bound.
+      const double longest = (std::floor(largest_sample_time_pairs / maneuvers) - 1.0) * k.max_time_step * (1.0 - 1e-3);
+      char buffer[32];
+      const auto end = std::to_chars(buffer, buffer + sizeof buffer, longest, std::chars_format::general, 4).ptr;
+      return "at most " + std::string(buffer, end) + " s with config.max_time_step = " + number(k.max_time_step) +
+             " s and config.resolution " + std::to_string(k.resolution.accelerations) + " × " +
+             std::to_string(k.resolution.curvatures) + ": " + number(times) + " sample times for " +
+             number(maneuvers) + " sampled maneuvers exceed the 5e8 pairs a planning step may hold";
+    });
+  }
   c.require(k.max_exhaustive_assignments >= 1, "config.max_exhaustive_assignments",
             static_cast<double>(k.max_exhaustive_assignments), "at least 1");
   if (k.policy.kind == forecast_policy_kind::constant) {

@@ -371,7 +371,7 @@ class mapper {
     c.displacement_horizon = v.quantity_or("displacement_horizon", {seconds}, c.displacement_horizon, range::positive);
     c.collision_window = v.quantity_or("collision_window", {seconds}, c.collision_window, range::positive);
     c.forecast_step = v.quantity_or("forecast_step", {seconds}, c.forecast_step, range::positive);
-    if (auto f = v.get("forecast_count")) c.forecast_count = read_integer(ctx_, *f, 1000);
+    if (auto f = v.get("forecast_count")) c.forecast_count = read_integer(ctx_, *f, mm::largest_forecast_count);
     c.history_window = v.quantity_or("history_window", {seconds}, c.history_window, range::positive);
     if (v.has("resolution")) {
       const map_view r = v.child("resolution");

@@ -119,7 +119,10 @@ void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_s
     std::string field = *why;
     if (field.rfind("ego.limits.", 0) == 0) field = "limits." + field.substr(11);
     else if (field.rfind("ego.speed", 0) == 0) field = "initial_speed" + field.substr(9);
-    else if (field.rfind("config.", 0) == 0) field = "planner." + field.substr(7);
+    // The configuration's fields, wherever the message names them: planner.*.
+    for (std::size_t at = field.find("config."); at != std::string::npos; at = field.find("config.", at)) {
+      field.replace(at, 7, "planner.");
+    }
     c.fail("", field);
   }
 }

@@ -345,6 +345,18 @@ TEST(planner, an_input_that_needs_a_time_step_below_the_floor_is_refused_and_one
   fast.ego.limits.speed_cap = 4.4e27;
   fast.ego.speed = 4.4e27;
   EXPECT_EQ(plan(fast).status, plan_status::invalid_input);
+  // A step above the floor that would sample more pairs than a step may hold: a fine resolution
+  // over a long window with a small walker (the pairs at max_time_step alone are within the bound).
+  plan_input crowded = crossing_scene();
+  crowded.config.resolution = {101, 101};
+  crowded.config.collision_window = 30.0;
+  crowded.obstacles[0].shape = disc{0.01};
+  ASSERT_FALSE(validation_error(crowded)) << *validation_error(crowded);
+  const plan_result too_many = plan(crowded);
+  EXPECT_EQ(too_many.status, plan_status::invalid_input);
+  EXPECT_NE(too_many.error.find("config.collision_window = 30 s at the collision time step of"), std::string::npos)
+      << too_many.error;
+  EXPECT_NE(too_many.error.find("exceed the 5e8 pairs"), std::string::npos) << too_many.error;
   // A disc whose tunneling bound is just above the floor is planned on.
   const double speeds = 40.0 / 3.6 + 3.0 * 1.0 + 10.0;  // the ego's top speed within T_h, and the car's
   plan_input small = crossing_scene();

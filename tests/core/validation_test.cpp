@@ -3,6 +3,7 @@
 #include <limits>
 #include <string>
 
+#include "mm/collision.hpp"
 #include "mm/planner.hpp"
 #include "random_scenes.hpp"
 
@@ -78,6 +79,41 @@ TEST(validation, an_empty_forecast_grid_or_one_beyond_the_collision_window_is_re
   expect_rejected(
       [](plan_input& in) { in.config.policy = {forecast_policy_kind::constant, 2.5}; },
       "config.policy.constant_forecast_time", "on the grid");
+}
+
+TEST(validation, a_planning_step_too_large_to_hold_is_rejected_before_anything_is_sampled) {
+  // Found by hand on 2026-12-05: a window of 1e9 s ran out of memory (std::bad_alloc) and a step of
+  // 1e-9 s ran for minutes; the forecast grid and the steps are now bounded as the resolution is.
+  expect_rejected([](plan_input& in) { in.config.max_time_step = 1e-9; }, "config.max_time_step",
+                  "at least 0.0001 s");
+  expect_rejected([](plan_input& in) { in.config.collision_window = 1e9; }, "config.collision_window",
+                  "exceed the 5e8 pairs");
+  expect_rejected(
+      [](plan_input& in) {
+        in.config.forecast_count = largest_forecast_count + 1;
+        in.config.forecast_step = 0.001;
+      },
+      "config.forecast_count", "at most 1000");
+  expect_rejected(
+      [](plan_input& in) {
+        in.config.resolution = {201, 201};
+        in.config.collision_window = 10.0;
+        in.config.max_time_step = 1e-4;
+      },
+      "config.collision_window", "at most 0.618 s with config.max_time_step = 1e-04 s and config.resolution 201 × 201");
+  // The limits themselves are valid: the largest grid, the shortest step over the default window,
+  // and the finest resolution over the default window (checked, not planned: about a minute).
+  plan_input largest = valid_input();
+  largest.config.forecast_count = largest_forecast_count;
+  largest.config.forecast_step = 0.003;
+  EXPECT_FALSE(validation_error(largest)) << *validation_error(largest);
+  plan_input shortest = valid_input();
+  shortest.config.max_time_step = smallest_collision_time_step;
+  EXPECT_FALSE(validation_error(shortest)) << *validation_error(shortest);
+  plan_input finest = valid_input();
+  finest.config.resolution = {2001, 2001};
+  EXPECT_FALSE(validation_error(finest)) << *validation_error(finest);
+  EXPECT_LE(sampled_maneuver_count(finest.config.resolution) * sample_time_count(3.0, 0.05), largest_sample_time_pairs);
 }
 
 TEST(validation, one_observation_is_enough_when_the_caller_gives_the_motion) {

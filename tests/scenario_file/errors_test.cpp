@@ -168,7 +168,14 @@ const std::vector<error_case> cases{
     {"a meeting point behind an agent's start", with_line(13, "    desired_speed_kmh: 30\n    start_arc_length_m: 60"), 20,
      "meet[0].conflict_point_m", {"the conflict point lies 20 m behind the start of agent A"}},
     {"semantic check of the planner configuration", with_line(13, "    desired_speed_kmh: 30\n    planner: {displacement_horizon_s: 4}"),
-     7, "agents[0] \"A\"", {"planner.collision_window = 3", "at least config.displacement_horizon = 4"}},
+     7, "agents[0] \"A\"", {"planner.collision_window = 3", "at least planner.displacement_horizon = 4"}},
+    {"a collision window too long for a planning step to hold",
+     with_line(13, "    desired_speed_kmh: 30\n    planner: {collision_window_s: 1.0e9}"), 7, "agents[0] \"A\"",
+     {"planner.collision_window = 1e+09", "expected at most 3.964e+04 s with planner.max_time_step = 0.05 s",
+      "exceed the 5e8 pairs"}},
+    {"a collision time step below the shortest the planner takes",
+     with_line(13, "    desired_speed_kmh: 30\n    planner: {max_time_step_s: 1.0e-9}"), 7, "agents[0] \"A\"",
+     {"planner.max_time_step = 1e-09", "expected at least 0.0001 s"}},
 };
 
 INSTANTIATE_TEST_SUITE_P(all, scenario_file_errors, ::testing::ValuesIn(cases),

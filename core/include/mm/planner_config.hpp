@@ -43,4 +43,21 @@ struct planner_config {
 /// The forecast grid τ_i = i·Δτ [s] (spec §4).
 std::vector<double> forecast_times(const planner_config& config);
 
+/// The most forecast times the planner takes (`planner_config::forecast_count`; 17 in the paper).
+inline constexpr std::size_t largest_forecast_count = 1000;
+
+/// The most (sampled maneuver, collision sample time) pairs one planning step may hold: 2 families
+/// × accelerations × curvatures maneuvers, times `sample_time_count` sample times. The finest
+/// resolution (2001 × 2001) over the default window (3 s at 0.05 s, 61 sample times) fits: about
+/// 7.6 GB and a minute. A larger step is refused as invalid instead of running out of memory or
+/// time (docs/method.md, deviations).
+inline constexpr double largest_sample_time_pairs = 5e8;
+
+/// Sample times of a collision window of `duration` [s] at time steps of at most `step` [s]:
+/// ⌈duration/step⌉ + 1 (both ends), as a double (it may exceed every integer type).
+double sample_time_count(double duration, double step);
+
+/// Sampled maneuvers of both families at `resolution`, as a double.
+double sampled_maneuver_count(const sampling_resolution& resolution);
+
 }  // namespace mm
