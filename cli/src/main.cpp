@@ -11,6 +11,7 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <thread>
 
 #include "mm/cli/commands.hpp"
@@ -313,7 +314,7 @@ int main(int argc, char** argv) {
       "sweep", "Run a parameter sweep (grid of parameters x policies x seeded repetitions) in parallel; write runs.csv, table.csv, table.md");
   sweep->add_option("FILE", sweep_opts.file, "Sweep file, or the name of a built-in sweep (maneuvermap list)")->required();
   sweep->add_option("--jobs,-j", sweep_opts.jobs, "Runs in parallel (default: the number of cores)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(1U, 256U))
       ->type_name("N");
   sweep->add_option("--out", sweep_opts.out, "Output directory (default out/<sweep name>)")->type_name("DIR");
   sweep->add_flag("--keep-runs", sweep_opts.keep_runs, "Also write every run's own output directory under DIR/runs/");
@@ -370,7 +371,7 @@ int main(int argc, char** argv) {
       ->type_name("FILE.xml");
   replay->add_option("--agent", replay_options.agent,
                      "The road user to drive (default: the recorded ego of the file's planning problem)")
-      ->check(CLI::PositiveNumber)
+      ->check(CLI::Range(std::uint32_t{1}, std::numeric_limits<std::uint32_t>::max()))
       ->type_name("ID");
   replay->add_option("--policy", replay_options.policy, "Forecast policy: adj (default), const:SECONDS or robust")
       ->type_name("adj|const:SECONDS|robust");

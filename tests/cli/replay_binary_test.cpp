@@ -82,6 +82,8 @@ TEST(maneuvermap_replay, bad_input_exits_2_with_a_message_that_says_what_was_wro
     EXPECT_EQ(bad.code, 2) << option << ": " << bad.err;
     EXPECT_TRUE(contains(bad.err, "maneuvermap: ")) << option << ": " << bad.err;
   }
+  const result zero = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --agent 0" + out, dir);
+  EXPECT_TRUE(contains(zero.err, "--agent: Value 0 not in range 1 to 4294967295")) << zero.err;
 }
 
 }  // namespace
