@@ -723,8 +723,26 @@ std::size_t simulation::step_index() const { return impl_->step; }
 const struct scenario& simulation::definition() const { return impl_->sc; }
 std::size_t simulation::agent_count() const { return impl_->infos.size(); }
 std::size_t simulation::planning_vehicle_count() const { return impl_->vehicles.size(); }
-const agent_info& simulation::info(agent_id id) const { return impl_->infos.at(id); }
-const agent_state& simulation::state(agent_id id) const { return impl_->states.at(id); }
+namespace {
+
+/// `id`, or std::out_of_range naming it and the ids there are (`what`: "agent", "planning vehicle").
+agent_id checked(agent_id id, std::size_t count, const char* what, const char* call) {
+  if (id >= count) {
+    throw std::out_of_range(std::string(call) + ": " + what + " " + std::to_string(id) + " does not exist: expected " +
+                            (count == 0 ? std::string("none, the scenario has no ") + what
+                                        : "an id from 0 to " + std::to_string(count - 1)));
+  }
+  return id;
+}
+
+}  // namespace
+
+const agent_info& simulation::info(agent_id id) const {
+  return impl_->infos[checked(id, impl_->infos.size(), "agent", "info")];
+}
+const agent_state& simulation::state(agent_id id) const {
+  return impl_->states[checked(id, impl_->states.size(), "agent", "state")];
+}
 std::span<const agent_state> simulation::states() const { return impl_->states; }
 
 std::optional<agent_id> simulation::find(std::string_view name) const {
@@ -735,14 +753,16 @@ std::optional<agent_id> simulation::find(std::string_view name) const {
 }
 
 const plan_record* simulation::last_plan(agent_id id) const {
-  const auto& v = impl_->vehicles.at(id);
+  const auto& v = impl_->vehicles[checked(id, impl_->vehicles.size(), "planning vehicle", "last_plan")];
   return v.last_plan ? &*v.last_plan : nullptr;
 }
 
-bool simulation::planned_now(agent_id id) const { return impl_->vehicles.at(id).planned_now; }
+bool simulation::planned_now(agent_id id) const {
+  return impl_->vehicles[checked(id, impl_->vehicles.size(), "planning vehicle", "planned_now")].planned_now;
+}
 
 std::optional<mm::plan_input> simulation::planning_input(agent_id id) const {
-  const impl::vehicle& v = impl_->vehicles.at(id);
+  const impl::vehicle& v = impl_->vehicles[checked(id, impl_->vehicles.size(), "planning vehicle", "planning_input")];
   if (!impl_->states[id].present()) return std::nullopt;
   mm::plan_input input;
   impl_->fill_input(v, impl_->nominal_of(v).nominal, input);
@@ -752,8 +772,7 @@ std::optional<mm::plan_input> simulation::planning_input(agent_id id) const {
 std::span<const crash_event> simulation::crashes() const { return impl_->crash_log; }
 
 run_metrics simulation::metrics(agent_id id) const {
-  if (id >= impl_->vehicles.size()) throw std::out_of_range("metrics: agent " + std::to_string(id) + " is not a planning vehicle");
-  return impl_->metrics_of(id);
+  return impl_->metrics_of(checked(id, impl_->vehicles.size(), "planning vehicle", "metrics"));
 }
 
 std::vector<run_metrics> simulation::all_metrics() const {

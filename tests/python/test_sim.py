@@ -109,7 +109,7 @@ def test_the_planning_input_of_a_vehicle_plans_in_python_as_the_vehicle_planned(
             compared += 1
     assert compared == 3
     assert simulation.state(a).present()
-    with pytest.raises(IndexError):
+    with pytest.raises(IndexError, match="state: agent [0-9]+ does not exist: expected an id from 0 to"):
         simulation.state(simulation.agent_count)
 
 

@@ -165,6 +165,31 @@ TEST(simulation, replanning_on_the_planning_input_reproduces_the_decision) {
   EXPECT_DOUBLE_EQ(sim.state(0).curvature, last.result.command.curvature);
 }
 
+TEST(simulation, an_id_that_does_not_exist_is_an_out_of_range_error_that_names_the_ids_there_are) {
+  const simulation sim(crossing(true));  // A plans (id 0), B does not (id 1)
+  ASSERT_EQ(sim.agent_count(), 2U);
+  ASSERT_EQ(sim.planning_vehicle_count(), 1U);
+  const auto message = [](auto&& call) {
+    try {
+      call();
+    } catch (const std::out_of_range& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message([&] { (void)sim.state(2); }), "state: agent 2 does not exist: expected an id from 0 to 1");
+  EXPECT_EQ(message([&] { (void)sim.info(7); }), "info: agent 7 does not exist: expected an id from 0 to 1");
+  EXPECT_EQ(message([&] { (void)sim.last_plan(1); }),
+            "last_plan: planning vehicle 1 does not exist: expected an id from 0 to 0");
+  EXPECT_EQ(message([&] { (void)sim.planned_now(1); }),
+            "planned_now: planning vehicle 1 does not exist: expected an id from 0 to 0");
+  EXPECT_EQ(message([&] { (void)sim.planning_input(1); }),
+            "planning_input: planning vehicle 1 does not exist: expected an id from 0 to 0");
+  EXPECT_EQ(message([&] { (void)sim.metrics(1); }),
+            "metrics: planning vehicle 1 does not exist: expected an id from 0 to 0");
+  EXPECT_EQ(message([&] { (void)sim.state(1); }), "no error");
+}
+
 TEST(simulation, planning_every_k_steps_holds_the_command_in_between) {
   scenario s = crossing(true);
   s.duration = 0.5;
