@@ -356,11 +356,18 @@ std::string metrics_table(const std::vector<mm::sim::run_metrics>& metrics, bool
   return out;
 }
 
+namespace {
+
+/// A number as the user gave it, short: 2, 0.3, 1e+300, nan.
+std::string as_given(double value) { return fmt::format("{:g}", value); }
+
+}  // namespace
+
 snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::string& agent, double time,
                        std::optional<double> tau) {
   const mm::sim::scenario& s = loaded.scenario;
   if (!std::isfinite(time) || time < 0.0 || time > s.duration + 1e-9) {
-    throw input_error("--time " + fixed(time, 3) + ": expected a time from 0 to the duration " + fixed(s.duration, 3) + " s");
+    throw input_error("--time " + as_given(time) + ": expected a time from 0 to the duration " + fixed(s.duration, 3) + " s");
   }
   mm::sim::simulation sim(s);
   const std::optional<mm::sim::agent_id> id = sim.find(agent);
@@ -373,7 +380,7 @@ snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::
   const double tolerance = 1e-9 * std::max(1.0, time);
   while (!sim.ended() && sim.time() < time - tolerance) sim.step();
   if (sim.time() < time - tolerance) {
-    throw input_error("--time " + fixed(time, 3) + ": the run ended at t = " + fixed(sim.time(), 3) +
+    throw input_error("--time " + as_given(time) + ": the run ended at t = " + fixed(sim.time(), 3) +
                       " s (a crash, or every planning vehicle finished its path)");
   }
   if (sim.state(*id).status != mm::sim::agent_status::active) {
@@ -394,7 +401,7 @@ snapshot take_snapshot(const scenario_file::loaded_scenario& loaded, const std::
     if (!tau || std::abs(taus[i] - *tau) <= 1e-6) selected.push_back(i);
   }
   if (tau && selected.empty()) {
-    throw input_error("--tau " + fixed(*tau, 3) + ": not on the forecast grid (0 to " + fixed(taus.back(), 3) +
+    throw input_error("--tau " + as_given(*tau) + ": not on the forecast grid (0 to " + fixed(taus.back(), 3) +
                       " s in steps of " + fixed(shot.input.config.forecast_step, 3) + " s)");
   }
   const mm::sample_snapshot& samples = *shot.result.samples;

@@ -46,7 +46,15 @@ void add_scenario_options(CLI::App& command, scenario_options& o, bool with_poli
   if (with_policy) {
     command.add_option("--policy", o.policy, "Forecast policy of every planning vehicle: adj, const:SECONDS or robust")
         ->type_name("adj|const:SECONDS|robust");
-    command.add_option("--seed", o.seed, "Seed of the sensor noise (replaces the scenario's)");
+    command.add_option("--seed", o.seed, "Seed of the sensor noise (replaces the scenario's)")
+        ->check(CLI::Validator(
+            [](std::string& text) {
+              const bool digits = !text.empty() && std::all_of(text.begin(), text.end(), [](char c) {
+                return c >= '0' && c <= '9';
+              });
+              return digits ? std::string() : "expected an integer from 0 to 18446744073709551615, got " + text;
+            },
+            "SEED"));
   }
 }
 

@@ -82,11 +82,22 @@ TEST(maneuvermap, bad_option_values_exit_2) {
   EXPECT_TRUE(contains(policy.err, "--policy sideways: expected adj, const:SECONDS or robust")) << policy.err;
   EXPECT_EQ(run("run s1-crossing --policy const:0.3", "off_grid_policy").code, 2);
   EXPECT_EQ(run("run s1-crossing --seed minus", "bad_seed").code, 2);
+  // A negative seed is refused, not wrapped around to 2^64 − 5.
+  const result negative_seed = run("run s1-crossing --seed -5", "negative_seed");
+  EXPECT_EQ(negative_seed.code, 2);
+  EXPECT_TRUE(contains(negative_seed.err, "expected an integer from 0 to 18446744073709551615, got -5"))
+      << negative_seed.err;
   EXPECT_EQ(run("run s1-crossing --set a_kmh", "bad_set").code, 2);
   const result unknown = run("run s1-crossing --set speed_kmh=3", "unknown_parameter");
   EXPECT_EQ(unknown.code, 2);
   EXPECT_TRUE(contains(unknown.err, "--set speed_kmh: unknown parameter")) << unknown.err;
   EXPECT_EQ(run("snapshot s1-crossing --time 9 --agent A", "late_snapshot").code, 2);
+  const result not_a_time = run("snapshot s1-crossing --time nan --agent A", "nan_snapshot");
+  EXPECT_EQ(not_a_time.code, 2);
+  EXPECT_TRUE(contains(not_a_time.err, "--time nan: expected a time from 0 to the duration 8.000 s")) << not_a_time.err;
+  const result huge_tau = run("snapshot s1-crossing --time 1 --agent A --tau 1e300", "huge_tau");
+  EXPECT_EQ(huge_tau.code, 2);
+  EXPECT_TRUE(contains(huge_tau.err, "--tau 1e+300: not on the forecast grid")) << huge_tau.err;
   EXPECT_EQ(run("snapshot s1-crossing --time 1 --agent C", "unknown_agent").code, 2);
   EXPECT_EQ(run("snapshot s1-crossing --time 1", "missing_agent").code, 2);
 }
