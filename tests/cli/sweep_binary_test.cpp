@@ -133,6 +133,40 @@ TEST(maneuvermap_plot, a_directory_that_is_neither_a_run_nor_a_sweep_exits_2) {
   EXPECT_TRUE(contains(r.err, "neither a run directory")) << r.err;
 }
 
+TEST(maneuvermap_plot, a_run_file_that_is_not_what_maneuvermap_writes_exits_2_naming_the_line_and_field) {
+  REQUIRE_MATPLOTLIB();
+  const temp_dir dir("plot_corrupt");
+  const result r = run("run " + scenario + " --set duration_s=0.5 --out " + (dir / "run").string(), "run");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::filesystem::path trajectories = dir / "run" / "trajectories.csv";
+  const std::string good = read_file(trajectories);
+  // A value that is not a number, one that is not finite, a column renamed, a row too long.
+  const std::string first_row = good.substr(good.find('\n') + 1, good.find('\n', good.find('\n') + 1) - good.find('\n'));
+  const std::string header = good.substr(0, good.find('\n') + 1);
+  const std::string rest = good.substr(header.size() + first_row.size());
+  const auto with_first_row = [&](const std::string& row) { return header + row + rest; };
+  const std::size_t x_at = first_row.find(',', first_row.find(',') + 1) + 1;  // t, agent, x
+  const std::size_t x_end = first_row.find(',', x_at);
+  const std::string x_value = first_row.substr(x_at, x_end - x_at);
+  const struct {
+    std::string text;
+    std::string message;
+  } cases[] = {
+      {with_first_row(first_row.substr(0, x_at) + "garbage" + first_row.substr(x_end)), "trajectories.csv:2: x = 'garbage': expected a number"},
+      {with_first_row(first_row.substr(0, x_at) + "nan" + first_row.substr(x_end)), "trajectories.csv:2: x = 'nan': expected a finite number"},
+      {"t,agent,xx" + good.substr(good.find(",y,")), "trajectories.csv:2: no column 'x'"},
+      {with_first_row(first_row.substr(0, first_row.size() - 1) + ",9\n"), "trajectories.csv:2: more fields than the header's 8"},
+  };
+  ASSERT_FALSE(x_value.empty());
+  for (const auto& c : cases) {
+    write_file(trajectories, c.text);
+    const result plotted = run("plot " + (dir / "run").string(), "corrupt");
+    EXPECT_EQ(plotted.code, 2) << c.message << "\n" << plotted.err;
+    EXPECT_TRUE(contains(plotted.err, c.message)) << plotted.err;
+    EXPECT_FALSE(contains(plotted.err, "Traceback")) << plotted.err;
+  }
+}
+
 TEST(maneuvermap_plot, run_with_plots_draws_the_map_speed_and_top_down_view) {
   REQUIRE_MATPLOTLIB();
   const temp_dir dir("plot_run");

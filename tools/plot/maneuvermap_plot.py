@@ -76,20 +76,45 @@ class BadInput(Exception):
 # --- reading ----------------------------------------------------------------------------------
 
 
+class csv_row(dict):
+    """One row of a CSV file: its fields by column name, and where it came from (for messages)."""
+
+    def __init__(self, fields, path, line):
+        super().__init__(fields)
+        self.path = path
+        self.line = line
+
+    def __missing__(self, column):
+        raise BadInput(f"{self.path}:{self.line}: no column {column!r} (the header has {', '.join(map(str, self))})")
+
+
 def read_csv(path):
-    """The rows of a CSV file as dicts (header from the first line)."""
+    """The rows of a CSV file as `csv_row`s (header from the first line)."""
     with open(path, newline="", encoding="utf-8") as f:
-        return list(csv.DictReader(f))
+        reader = csv.DictReader(f)
+        rows = []
+        for fields in reader:
+            if None in fields:
+                raise BadInput(f"{path}:{reader.line_num}: more fields than the header's {len(reader.fieldnames)}")
+            rows.append(csv_row(fields, path, reader.line_num))
+        return rows
+
+
+def field_number(row, column):
+    """The finite number in `column` of `row`, or BadInput naming the file, line, column and value."""
+    text = row[column]
+    try:
+        result = float(text)
+    except (TypeError, ValueError):
+        raise BadInput(f"{row.path}:{row.line}: {column} = {text!r}: expected a number") from None
+    if not math.isfinite(result):
+        raise BadInput(f"{row.path}:{row.line}: {column} = {text!r}: expected a finite number")
+    return result
 
 
 def read_json(path):
     with open(path, encoding="utf-8") as f:
         return json.load(f)
-
-
-def number(text):
-    """A float, or None for an empty field."""
-    return float(text) if text not in (None, "") else None
 
 
 # --- policies: one colour and line style each, the same on every figure ------------------------
@@ -225,7 +250,7 @@ class Run:
             by_agent = {}
             for row in read_csv(os.path.join(self.dir, "trajectories.csv")):
                 by_agent.setdefault(row["agent"], []).append(
-                    (float(row["t"]), float(row["x"]), float(row["y"]), float(row["heading"]), float(row["speed"]))
+                    (field_number(row, "t"), field_number(row, "x"), field_number(row, "y"), field_number(row, "heading"), field_number(row, "speed"))
                 )
             self._trajectories = {
                 name: dict(zip(("t", "x", "y", "heading", "speed"), np.array(rows).T)) for name, rows in by_agent.items()
@@ -268,25 +293,25 @@ def plot_map(run, agent, out_dir, name, written):
     if not rows or not decisions:
         print(f"maneuvermap_plot: {run.dir}: {agent} never planned; no map", file=sys.stderr)
         return
-    times = np.array(sorted({float(r["t"]) for r in rows}))
-    taus = np.array(sorted({float(r["tau"]) for r in rows}))
+    times = np.array(sorted({field_number(r, "t") for r in rows}))
+    taus = np.array(sorted({field_number(r, "tau") for r in rows}))
     t_index = {t: i for i, t in enumerate(times)}
     tau_index = {t: i for i, t in enumerate(taus)}
     mi = {"brake": np.full((len(taus), len(times)), np.nan), "accelerate": np.full((len(taus), len(times)), np.nan)}
     excluded = np.zeros((len(taus), len(times)), dtype=bool)
     for r in rows:
-        i, j = tau_index[float(r["tau"])], t_index[float(r["t"])]
-        mi["brake"][i, j] = float(r["mi_brake"])
-        mi["accelerate"][i, j] = float(r["mi_accel"])
+        i, j = tau_index[field_number(r, "tau")], t_index[field_number(r, "t")]
+        mi["brake"][i, j] = field_number(r, "mi_brake")
+        mi["accelerate"][i, j] = field_number(r, "mi_accel")
         excluded[i, j] = r["excluded"] == "1"
     dt = float(np.median(np.diff(times))) if len(times) > 1 else run.summary.get("time_step_s", 0.01)
     dtau = float(np.median(np.diff(taus))) if len(taus) > 1 else 0.125
     t_edges = np.append(times - dt / 2, times[-1] + dt / 2)
     tau_edges = np.append(taus - dtau / 2, taus[-1] + dtau / 2)
 
-    dt_times = np.array([float(d["t"]) for d in decisions])
-    tau_bar = np.array([float(d["tau_bar"]) for d in decisions])
-    ttc = np.array([number(d["ttc"]) if d["ttc"] != "" else np.nan for d in decisions])
+    dt_times = np.array([field_number(d, "t") for d in decisions])
+    tau_bar = np.array([field_number(d, "tau_bar") for d in decisions])
+    ttc = np.array([field_number(d, "ttc") if d["ttc"] != "" else np.nan for d in decisions])
     families = [d["family"] for d in decisions]
     modes = [d["mode"] for d in decisions]
     # Under the robust policy: the steps at which ADJ decided, no maneuver being safe under every
@@ -547,7 +572,7 @@ def plot_rooms(run, rows, out_dir, name, written):
     """The room to maneuver of every measured road user over time (maneuvermap measure)."""
     by_agent = {}
     for r in rows:
-        by_agent.setdefault(r["agent"], []).append((float(r["t"]), float(r["room"]), r["mode"] != "nominal"))
+        by_agent.setdefault(r["agent"], []).append((field_number(r, "t"), field_number(r, "room"), r["mode"] != "nominal"))
     fig, ax = plt.subplots(figsize=(9, 4.8))
     least = min(by_agent.items(), key=lambda item: min(room for _, room, _ in item[1]))[0] if by_agent else None
     for i, (agent, points) in enumerate(by_agent.items()):
@@ -576,7 +601,7 @@ def plot_rooms(run, rows, out_dir, name, written):
 
 
 def cell_key(row, params):
-    return tuple(float(row[p]) for p in params)
+    return tuple(field_number(row, p) for p in params)
 
 
 def sweep_cells(rows, params):
@@ -603,7 +628,7 @@ def plot_min_dist(sweep, rows, out_dir, written):
             group = [r for r in cells.get(combo + (policy,), []) if r["error"] == ""]
             if not group:
                 continue
-            d = np.array([float(r["min_dist_m"]) for r in group if r["min_dist_m"] != ""])
+            d = np.array([field_number(r, "min_dist_m") for r in group if r["min_dist_m"] != ""])
             crashes = sum(r["crash"] == "1" for r in group)
             x = c_i + (p_i - (len(policies) - 1) / 2) * width
             mean = d.mean() if len(d) else 0.0
@@ -643,7 +668,7 @@ def paper_policy(policy):
 def plot_table1(sweep, rows, paper_rows, out_dir, written):
     """Figure 5: Table 1 as a chart, ours (mean ± sd, crashes) beside the paper's, per B speed."""
     cells = sweep_cells(rows, ["a_kmh", "b_kmh"])
-    paper = {(float(r["a_kmh"]), float(r["b_kmh"]), r["policy"]): r for r in paper_rows}
+    paper = {(field_number(r, "a_kmh"), field_number(r, "b_kmh"), r["policy"]): r for r in paper_rows}
     a_values = sorted({k[0] for k in cells})
     b_values = sorted({k[1] for k in cells}, reverse=True)
     policies = sorted({k[2] for k in cells}, key=policy_key)
@@ -656,7 +681,7 @@ def plot_table1(sweep, rows, paper_rows, out_dir, written):
                 x = a_i + (p_i - (len(policies) - 1) / 2) * width
                 group = [r for r in cells.get((a, b, policy), []) if r["error"] == ""]
                 if group:
-                    d = np.array([float(r["min_dist_m"]) for r in group if r["min_dist_m"] != ""])
+                    d = np.array([field_number(r, "min_dist_m") for r in group if r["min_dist_m"] != ""])
                     crashes = sum(r["crash"] == "1" for r in group)
                     mean = d.mean() if len(d) else 0.0
                     sd = d.std(ddof=1) if len(d) > 1 else 0.0
@@ -756,7 +781,7 @@ def plot_snapshot(csv_path, out_dir, written):
         raise BadInput(f"{csv_path}: not a snapshot CSV of maneuvermap")
     json_path = os.path.splitext(csv_path)[0] + ".json"
     info = read_json(json_path) if os.path.isfile(json_path) else None
-    taus = sorted({float(r["tau"]) for r in rows})
+    taus = sorted({field_number(r, "tau") for r in rows})
     tau = taus[0] if len(taus) == 1 else 1.0
     if info is not None:
         tau = min(taus, key=lambda t: abs(t - info["tau_bar_s"]))
@@ -764,8 +789,8 @@ def plot_snapshot(csv_path, out_dir, written):
         tau = min(taus, key=lambda t: abs(t - tau))
         print(f"maneuvermap_plot: no {json_path}: drawing τ = {tau:g} s without the nominal and chosen maneuvers",
               file=sys.stderr)
-    at = [r for r in rows if abs(float(r["tau"]) - tau) < 1e-6]
-    pts = np.array([[float(r["end_x"]), float(r["end_y"])] for r in at])
+    at = [r for r in rows if abs(field_number(r, "tau") - tau) < 1e-6]
+    pts = np.array([[field_number(r, "end_x"), field_number(r, "end_y")] for r in at])
     fam = np.array([r["family"] for r in at])
     # The decision's sets where the CSV has them (each obstacle at its own τ, or the robust sets),
     # else the column of τ̄.
@@ -876,6 +901,11 @@ def main(argv):
         return EXIT_BAD_INPUT
     except (OSError, json.JSONDecodeError) as error:
         print(f"maneuvermap_plot: {target}: cannot read it: {type(error).__name__}: {error}", file=sys.stderr)
+        return EXIT_BAD_INPUT
+    except (KeyError, TypeError, ValueError, IndexError) as error:
+        # A field of the JSON files, or a value, that is not what maneuvermap writes.
+        print(f"maneuvermap_plot: {target}: not what maneuvermap writes ({type(error).__name__}: {error})",
+              file=sys.stderr)
         return EXIT_BAD_INPUT
     for path in written:
         print(path)
