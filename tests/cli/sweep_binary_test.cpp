@@ -156,6 +156,7 @@ TEST(maneuvermap_plot, a_run_file_that_is_not_what_maneuvermap_writes_exits_2_na
       {with_first_row(first_row.substr(0, x_at) + "nan" + first_row.substr(x_end)), "trajectories.csv:2: x = 'nan': expected a finite number"},
       {"t,agent,xx" + good.substr(good.find(",y,")), "trajectories.csv:2: no column 'x'"},
       {with_first_row(first_row.substr(0, first_row.size() - 1) + ",9\n"), "trajectories.csv:2: more fields than the header's 8"},
+      {"", "trajectories.csv: empty: expected a header line"},
   };
   ASSERT_FALSE(x_value.empty());
   for (const auto& c : cases) {

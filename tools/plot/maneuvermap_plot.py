@@ -92,6 +92,8 @@ def read_csv(path):
     """The rows of a CSV file as `csv_row`s (header from the first line)."""
     with open(path, newline="", encoding="utf-8") as f:
         reader = csv.DictReader(f)
+        if reader.fieldnames is None:
+            raise BadInput(f"{path}: empty: expected a header line, as maneuvermap writes even without rows")
         rows = []
         for fields in reader:
             if None in fields:
