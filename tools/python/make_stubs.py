@@ -39,6 +39,14 @@ CONVERTIBLE = {
     f"{PACKAGE}.sim.planning_vehicle_list":
         f"Union[{PACKAGE}.sim.planning_vehicle_list, Sequence[{PACKAGE}.sim.planning_vehicle]]",
 }
+# Parameters the bindings take as any object and sort out themselves (python/src/sim_bindings.cpp),
+# by (module, function, parameter): what they accept. Every entry must be used.
+OBJECT_PARAMETERS = {
+    (f"{PACKAGE}.sim", "load", "file_or_builtin"): "Union[str, os.PathLike[str]]",
+    (f"{PACKAGE}.sim", "run", "scenario"):
+        f"Union[str, os.PathLike[str], {PACKAGE}.sim.loaded_scenario, {PACKAGE}.sim.scenario]",
+}
+used_object_parameters: set[tuple[str, str, str]] = set()
 # Attributes that an exception translator sets on the raised instance (python/src/*_bindings.cpp).
 EXCEPTION_ATTRIBUTES = {
     f"{PACKAGE}.sim.scenario_error": ["source: str", "line: int", "column: int", "field: str", "problem: str"],
@@ -130,7 +138,7 @@ class namer:
             self.numpy = True
         return text
 
-    def arguments(self, text: str, method: bool) -> str:
+    def arguments(self, text: str, method: bool, function: str = "") -> str:
         out = []
         for i, arg in enumerate(split_top_level(text)):
             if arg in ("*", "/"):
@@ -149,6 +157,10 @@ class namer:
             if method and i == 0 and name == "self":
                 out.append("self")
                 continue
+            key = (self.module, function, name)
+            if annotation.strip() == "object" and key in OBJECT_PARAMETERS:
+                used_object_parameters.add(key)
+                annotation = OBJECT_PARAMETERS[key]
             annotation = self.parameter_type(annotation)
             out.append(f"{name}: {annotation}" + (" = ..." if has_default else ""))
         return ", ".join(out)
@@ -197,7 +209,7 @@ def function(name: str, doc: str | None, names: namer, indent: str, method: bool
         if len(variants) > 1:
             out.append(f"{indent}@overload")
         returns = names.type(result) if result else "None"
-        head = f"{indent}def {name}({names.arguments(args, method)}) -> {returns}:"
+        head = f"{indent}def {name}({names.arguments(args, method, '' if method or static else name)}) -> {returns}:"
         body = docstring(text, indent + "    ")
         out.extend([head, *body, f"{indent}    ..."] if body else [head + " ..."])
     return out
@@ -322,6 +334,8 @@ def stubs() -> dict[str, str]:
     out = {"_maneuvermap/__init__.pyi": module_stub(core)}
     for sub in SUBMODULES:
         out[f"_maneuvermap/{sub}.pyi"] = module_stub(getattr(core, sub))
+    if unused := set(OBJECT_PARAMETERS) - used_object_parameters:
+        raise stub_error(f"OBJECT_PARAMETERS names parameters the module no longer takes as object: {sorted(unused)}")
     return out
 
 
