@@ -140,25 +140,29 @@ TEST(maneuvermap_plot, a_run_file_that_is_not_what_maneuvermap_writes_exits_2_na
   ASSERT_EQ(r.code, 0) << r.err;
   const std::filesystem::path trajectories = dir / "run" / "trajectories.csv";
   const std::string good = read_file(trajectories);
-  // A value that is not a number, one that is not finite, a column renamed, a row too long.
-  const std::string first_row = good.substr(good.find('\n') + 1, good.find('\n', good.find('\n') + 1) - good.find('\n'));
-  const std::string header = good.substr(0, good.find('\n') + 1);
-  const std::string rest = good.substr(header.size() + first_row.size());
-  const auto with_first_row = [&](const std::string& row) { return header + row + rest; };
-  const std::size_t x_at = first_row.find(',', first_row.find(',') + 1) + 1;  // t, agent, x
+  // The header, the first row (t, agent, x, ..., with its newline) and the rest; x replaced in the first row.
+  const std::size_t row_start = good.find('\n') + 1;
+  const std::size_t row_end = good.find('\n', row_start) + 1;
+  const std::string header = good.substr(0, row_start);
+  const std::string first_row = good.substr(row_start, row_end - row_start);
+  const std::string rest = good.substr(row_end);
+  const std::size_t x_at = first_row.find(',', first_row.find(',') + 1) + 1;
   const std::size_t x_end = first_row.find(',', x_at);
-  const std::string x_value = first_row.substr(x_at, x_end - x_at);
+  ASSERT_LT(x_at, x_end);
+  const auto with_x = [&](const std::string& x) {
+    return header + first_row.substr(0, x_at) + x + first_row.substr(x_end) + rest;
+  };
+  // A value that is not a number, one that is not finite, a column renamed, a row too long, no header.
   const struct {
     std::string text;
     std::string message;
   } cases[] = {
-      {with_first_row(first_row.substr(0, x_at) + "garbage" + first_row.substr(x_end)), "trajectories.csv:2: x = 'garbage': expected a number"},
-      {with_first_row(first_row.substr(0, x_at) + "nan" + first_row.substr(x_end)), "trajectories.csv:2: x = 'nan': expected a finite number"},
+      {with_x("garbage"), "trajectories.csv:2: x = 'garbage': expected a number"},
+      {with_x("nan"), "trajectories.csv:2: x = 'nan': expected a finite number"},
       {"t,agent,xx" + good.substr(good.find(",y,")), "trajectories.csv:2: no column 'x'"},
-      {with_first_row(first_row.substr(0, first_row.size() - 1) + ",9\n"), "trajectories.csv:2: more fields than the header's 8"},
+      {header + first_row.substr(0, first_row.size() - 1) + ",9\n" + rest, "trajectories.csv:2: more fields than the header's 8"},
       {"", "trajectories.csv: empty: expected a header line"},
   };
-  ASSERT_FALSE(x_value.empty());
   for (const auto& c : cases) {
     write_file(trajectories, c.text);
     const result plotted = run("plot " + (dir / "run").string(), "corrupt");

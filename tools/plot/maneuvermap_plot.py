@@ -252,7 +252,7 @@ class Run:
             by_agent = {}
             for row in read_csv(os.path.join(self.dir, "trajectories.csv")):
                 by_agent.setdefault(row["agent"], []).append(
-                    (field_number(row, "t"), field_number(row, "x"), field_number(row, "y"), field_number(row, "heading"), field_number(row, "speed"))
+                    tuple(field_number(row, column) for column in ("t", "x", "y", "heading", "speed"))
                 )
             self._trajectories = {
                 name: dict(zip(("t", "x", "y", "heading", "speed"), np.array(rows).T)) for name, rows in by_agent.items()
