@@ -83,7 +83,7 @@ TEST(validation, an_empty_forecast_grid_or_one_beyond_the_collision_window_is_re
 
 TEST(validation, a_planning_step_too_large_to_hold_is_rejected_before_anything_is_sampled) {
   // Found by hand on 2026-12-05: a window of 1e9 s ran out of memory (std::bad_alloc) and a step of
-  // 1e-9 s ran for minutes; the forecast grid and the steps are now bounded as the resolution is.
+  // 1e-9 s did not finish within a minute; the forecast grid and the steps are now bounded as the resolution is.
   expect_rejected([](plan_input& in) { in.config.max_time_step = 1e-9; }, "config.max_time_step",
                   "at least 0.0001 s");
   expect_rejected([](plan_input& in) { in.config.collision_window = 1e9; }, "config.collision_window",
