@@ -688,35 +688,45 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   independent_ = motion.yaw_rate == 0.0;
   const double last_tau = count == 0 ? 0.0 : taus_.back();
   heading_direction_ = unit_vector(motion.pose.heading);
-  turning_.reserve(times.size());
   turn_end_.reserve(count);
   first_straight_.reserve(count);
-  for (std::size_t k = 0; k < times.size() && (independent_ || times[k] <= last_tau); ++k) {
-    turning_.push_back(independent_ ? straight_forecast(times[k]) : as_placement(forecast_pose(motion, times[k], times[k])));
-  }
   for (const double tau : taus_) {
     turn_end_.push_back(independent_ ? straight_forecast(tau) : as_placement(forecast_pose(motion, tau, tau)));
     std::size_t k = independent_ ? times.size() : 0;
     while (k < times.size() && times[k] <= tau) ++k;
     first_straight_.push_back(k);
   }
+  work_.placements = turn_end_.size();
   const std::size_t slots = independent_ ? std::min<std::size_t>(count, 1) : count;
-  // The straight part of each slot's window: where it starts, and both road users there.
   part_start_.reserve(slots);
   part_first_.reserve(slots);
-  part_obstacle_.reserve(slots);
-  part_velocity_.reserve(slots);
   for (std::size_t i = 0; i < slots; ++i) {
     const double start = straight_part_start(obstacle, taus_[i], window);
-    const pose p = forecast_pose(motion, taus_[i], start);
     part_start_.push_back(start);
     part_first_.push_back(first_at_or_after(times, start));
-    part_obstacle_.push_back({p.position, unit_vector(p.heading)});
-    part_velocity_.push_back(motion.speed * part_obstacle_.back().direction);
   }
   sets_.assign(slots, {});
   sampled_.assign(slots, sample_mask(samples));
   exact_.assign(slots, {});
+  const vec2 start = sweep.reach_centre(0);
+  // A neighbour that no maneuver comes near costs its placements at the forecast times alone.
+  if (what == recording::collisions && far_at_every_time(start)) {
+    inert_ = true;
+    return;
+  }
+  turning_.reserve(times.size());
+  for (std::size_t k = 0; k < times.size() && (independent_ || times[k] <= last_tau); ++k) {
+    turning_.push_back(independent_ ? straight_forecast(times[k]) : as_placement(forecast_pose(motion, times[k], times[k])));
+  }
+  // The straight part of each slot's window: both road users where it starts.
+  part_obstacle_.reserve(slots);
+  part_velocity_.reserve(slots);
+  for (std::size_t i = 0; i < slots; ++i) {
+    const pose p = forecast_pose(motion, taus_[i], part_start_[i]);
+    part_obstacle_.push_back({p.position, unit_vector(p.heading)});
+    part_velocity_.push_back(motion.speed * part_obstacle_.back().direction);
+  }
+  work_.placements += turning_.size() + slots;
 
   // The collisions. The sample times shared by every forecast time that includes them (t_k ≤ τ: the
   // CTRV placement, and before the straight part of the window) are rastered once, in order; each
@@ -726,7 +736,6 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   // distance changes no faster than L under any forecast, so a wait computed on the shared times
   // holds for every forecast time's own times too.
   const double margin = window.margin;
-  const vec2 start = sweep.reach_centre(0);
   bool near = false;
   // No sample can overlap the obstacle at time index k (and none comes within the walking cap).
   const auto out_of_reach = [&](std::size_t k, const obstacle_at& o) {
@@ -822,6 +831,64 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     // Never within the walking cap of any sample: every clearance is exactly +cap.
     inert_ = true;
   }
+}
+
+bool clearance_field::far_at_every_time(vec2 start) const {
+  const std::vector<double>& times = sweep_.times();
+  const collision_window& window = sweep_.window();
+  const double speed = obstacle_.motion.speed;
+  // Rounding of the placements (forecast_pose, the construction's own order of operations) and of
+  // the distances, far below this at any coordinates a scene has [m].
+  const double slack = 1e-6 + 1e-12 * (norm(start) + norm(obstacle_.motion.pose.position) + speed * window.duration);
+  const double need = walk_cap_ + reach_ + window.margin + slack;
+  const auto far = [&](double distance, std::size_t k) { return distance - sweep_.reach_radius(k) >= need; };
+  const std::size_t slots = part_start_.size();
+  const auto along = [&](std::size_t i, double t) {
+    return turn_end_[i].position + speed * (t - taus_[i]) * turn_end_[i].direction;
+  };
+  const auto straight_part_far = [&](std::size_t i) {
+    const double from = part_start_[i];
+    const widening reach = sweep_.straight_reach();
+    const double radius = reach.base + reach.rate * (from - window.horizon);
+    const double closest = closest_approach_to_growing_disc(along(i, from) - start, speed * turn_end_[i].direction,
+                                                            reach.rate, window.duration - from);
+    return closest - radius >= need;
+  };
+  if (independent_) {
+    if (slots == 0) return true;
+    for (std::size_t k = 0; k < part_first_[0]; ++k) {
+      if (!far(norm(straight_forecast(times[k]).position - start), k)) return false;
+    }
+    return straight_part_far(0);
+  }
+  if (!std::is_sorted(taus_.begin(), taus_.end()) || (!taus_.empty() && taus_.front() < 0.0)) return false;
+  // The times every τ ≥ t shares (the CTRV curve): between two placements it knows, at τ_l ≤ t ≤
+  // τ_{l+1} (and the present pose at t = 0), the obstacle is within v·(t − τ_l) of the one and
+  // v·(τ_{l+1} − t) of the other, the arc being no shorter than the chord.
+  std::size_t shared = 0;
+  for (std::size_t i = 0; i < slots; ++i) shared = std::max(shared, std::min(first_straight_[i], part_first_[i]));
+  double before_time = 0.0;
+  double before = norm(obstacle_.motion.pose.position - start);
+  std::size_t next = 0;
+  for (std::size_t k = 0; k < shared; ++k) {
+    const double t = times[k];
+    while (next < slots && taus_[next] < t) {
+      before_time = taus_[next];
+      before = norm(turn_end_[next].position - start);
+      ++next;
+    }
+    double distance = before - speed * (t - before_time);
+    if (next < slots) distance = std::max(distance, norm(turn_end_[next].position - start) - speed * (taus_[next] - t));
+    if (!far(distance, k)) return false;
+  }
+  // Each forecast time's own times before its straight part, and that part: the obstacle straight from τ_i.
+  for (std::size_t i = 0; i < slots; ++i) {
+    for (std::size_t k = std::min(first_straight_[i], part_first_[i]); k < part_first_[i]; ++k) {
+      if (!far(norm(along(i, times[k]) - start), k)) return false;
+    }
+    if (!straight_part_far(i)) return false;
+  }
+  return true;
 }
 
 std::uint32_t clearance_field::until_second_order(std::size_t k, double gap, double change, double curvature) const {

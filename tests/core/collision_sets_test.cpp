@@ -7,6 +7,8 @@
 #include <array>
 #include <cstdint>
 #include <cstdio>
+#include <numbers>
+#include <random>
 #include <stdexcept>
 
 #include "mm/planner.hpp"
@@ -212,6 +214,58 @@ TEST(collision_sets, every_pair_of_shapes_gets_the_collisions_and_clearances_of_
     }
   }
   EXPECT_GT(colliding, 0u);
+}
+
+TEST(collision_sets, neighbours_found_inert_from_their_forecast_placements_alone_have_the_reference_s_clearances) {
+  // The scenes' obstacles moved 0 to 50 m away in a random direction: near ones are rastered, far
+  // ones are shown inert from their placements at the forecast times (`far_at_every_time`; the
+  // counts are printed, those the raster alone finds inert too). Every field has the clamped
+  // brute-force clearances bit for bit and the reference's collisions, and is inert whether or not
+  // it records its first overlaps (which rasters every field).
+  constexpr double cap = 2.0;
+  std::mt19937_64 rng(testing::property_seed() + 41);
+  std::uniform_real_distribution<double> distance(0.0, 50.0);
+  std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
+  const std::vector<double> taus = forecast_times(planner_config{});
+  std::size_t up_front = 0;
+  std::size_t by_raster = 0;
+  std::size_t not_inert = 0;
+  for (std::size_t trial = 0; trial < testing::property_count(16); ++trial) {
+    plan_input in = two_obstacle_scene(rng, trial);
+    for (obstacle_track& track : in.obstacles) {
+      const vec2 offset = distance(rng) * unit_vector(angle(rng));
+      for (observation& o : track.history) o.pose.position = o.pose.position + offset;
+    }
+    const prepared p = prepare(in, 0.05);
+    const ego_sweep sweep(in.ego, p.samples, p.window);
+    clearance_field::raster_scratch scratch;
+    for (const forecast_obstacle& obstacle : p.obstacles) {
+      const clearance_field field(sweep, obstacle, taus, cap);
+      const clearance_field recorded(sweep, obstacle, taus, cap, {}, scratch, clearance_field::recording::first_overlaps);
+      ASSERT_EQ(field.inert(), recorded.inert()) << "trial " << trial << "\n" << testing::describe(in);
+      const auto sampled = collisions_reference(in.ego, p.samples, obstacle, taus, p.window);
+      const auto brute = clearances_reference(in.ego, p.samples, obstacle, taus, p.window);
+      const auto fast = clearances(sweep, obstacle, taus, cap);
+      for (std::size_t i = 0; i < taus.size(); ++i) {
+        ASSERT_EQ(field.collisions(i), sampled[i]) << "trial " << trial << " tau " << taus[i] << "\n" << testing::describe(in);
+        for (std::size_t m = 0; m < p.samples.size(); ++m) {
+          ASSERT_EQ(fast[i][m], std::clamp(brute[i][m], -cap, cap))
+              << "trial " << trial << " tau " << taus[i] << " sample " << m << "\n" << testing::describe(in);
+        }
+      }
+      if (!field.inert()) {
+        ++not_inert;
+      } else if (field.statistics().placements == taus.size()) {
+        ++up_front;
+      } else {
+        ++by_raster;
+      }
+    }
+  }
+  std::printf("fields inert from their forecast placements: %zu, inert found by the raster: %zu, not inert: %zu\n",
+              up_front, by_raster, not_inert);
+  EXPECT_GT(up_front, 0u);
+  EXPECT_GT(not_inert, 0u);
 }
 
 TEST(collision_sets, a_field_rastered_in_reused_scratch_equals_a_fresh_one_bit_for_bit) {

@@ -437,6 +437,10 @@ class clearance_field {
     std::size_t exact_values = 0;          ///< clearances made exact
     std::size_t refinements = 0;           ///< refinements of a sampled minimum run (`refined_minimum`)
     std::size_t translation_minima = 0;    ///< closed-form minima over the straight part (`smallest_signed_distance`)
+    /// Placements of the obstacle computed up front: at the forecast times, then, unless it is
+    /// found inert from those alone (`far_at_every_time`), at every sample time they share and at
+    /// the start of each straight part.
+    std::size_t placements = 0;
   };
   const work& statistics() const { return work_; }
 
@@ -526,6 +530,16 @@ class clearance_field {
   /// First time index after k at which a distance `gap` [m] above zero at t_k, changing now at
   /// `change` [m/s] with a second derivative of at most `curvature` [m/s²], could reach zero.
   std::uint32_t until_second_order(std::size_t k, double gap, double change, double curvature) const;
+  /// True when the raster would find the obstacle inert (every distance it tests before and on
+  /// each forecast time's straight part at or above the walking cap), shown from its placements at
+  /// the forecast times alone: the distance of its reference point from the centre `start` of the
+  /// ego's reach, less the reach's radius at the time, the bounding radii and the margin, is ≥
+  /// `walk_cap_` at every sample time and on every straight part (the closed form of the growing
+  /// disc). On the curve the forecast times share, the distance at t between two known placements
+  /// at τ_l ≤ t ≤ τ_{l+1} is bounded below by max(d_l − v (t − τ_l), d_{l+1} − v (τ_{l+1} − t)) (the
+  /// reference point moves at speed v); after τ_i it is taken exactly. Only where it holds is it
+  /// used, so a field is inert whether or not this shows it (docs/performance.md, Many agents).
+  bool far_at_every_time(vec2 start) const;
   /// Marks in `state` every sample that overlaps the obstacle placed at `o` at time index k.
   void raster(std::size_t k, const obstacle_at& o, raster_state& state);
   /// `raster` of block `index` (and its halves when it is undecided as a whole).
