@@ -705,15 +705,19 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     part_start_.push_back(start);
     part_first_.push_back(first_at_or_after(times, start));
   }
+  const vec2 start = sweep.reach_centre(0);
+  // A neighbour that no maneuver comes near costs its placements at the forecast times alone, and
+  // one empty set serves every forecast time.
+  if (slots > 0 && what == recording::collisions && far_at_every_time(start)) {
+    inert_ = true;
+    sets_.assign(1, {});
+    sampled_.assign(1, sample_mask(samples));
+    exact_.assign(1, {});
+    return;
+  }
   sets_.assign(slots, {});
   sampled_.assign(slots, sample_mask(samples));
   exact_.assign(slots, {});
-  const vec2 start = sweep.reach_centre(0);
-  // A neighbour that no maneuver comes near costs its placements at the forecast times alone.
-  if (what == recording::collisions && far_at_every_time(start)) {
-    inert_ = true;
-    return;
-  }
   turning_.reserve(times.size());
   for (std::size_t k = 0; k < times.size() && (independent_ || times[k] <= last_tau); ++k) {
     turning_.push_back(independent_ ? straight_forecast(times[k]) : as_placement(forecast_pose(motion, times[k], times[k])));

@@ -449,8 +449,9 @@ class clearance_field {
                   double cap, std::span<const std::uint8_t> wanted, raster_scratch* reused, recording what);
   /// An obstacle's placement: reference point [m] and heading direction (cos, sin).
   using obstacle_at = placement;
-  /// Where the set of forecast time i is kept: 0 for all when the forecasts do not depend on τ.
-  std::size_t slot(std::size_t i) const { return independent_ ? 0 : i; }
+  /// Where the set of forecast time i is kept: 0 for all when one set serves every forecast time
+  /// (the forecasts do not depend on τ, or the field was found inert before its raster).
+  std::size_t slot(std::size_t i) const { return sampled_.size() == 1 ? 0 : i; }
   /// Obstacle placement at time index k under forecast time i.
   obstacle_at obstacle_pose(std::size_t i, std::size_t k) const;
   /// Obstacle placement at time t of an obstacle that does not turn (ω = 0): `forecast_pose` with
