@@ -217,14 +217,15 @@ TEST(collision_sets, every_pair_of_shapes_gets_the_collisions_and_clearances_of_
 }
 
 TEST(collision_sets, neighbours_found_inert_from_their_forecast_placements_alone_have_the_reference_s_clearances) {
-  // The scenes' obstacles moved 0 to 50 m away in a random direction: near ones are rastered, far
-  // ones are shown inert from their placements at the forecast times (`far_at_every_time`; the
-  // counts are printed, those the raster alone finds inert too). Every field has the clamped
-  // brute-force clearances bit for bit and the reference's collisions, and is inert whether or not
-  // it records its first overlaps (which rasters every field).
+  // The scenes' obstacles moved in a random direction, the first 0 to 15 m, the second 40 to 80 m:
+  // near ones are rastered, far ones are shown inert from their placements at the forecast times
+  // (`far_at_every_time`; the counts are printed, those the raster alone finds inert too). Every
+  // field has the clamped brute-force clearances bit for bit and the reference's collisions, and is
+  // inert whether or not it records its first overlaps (which rasters every field).
   constexpr double cap = 2.0;
   std::mt19937_64 rng(testing::property_seed() + 41);
-  std::uniform_real_distribution<double> distance(0.0, 50.0);
+  std::uniform_real_distribution<double> near(0.0, 15.0);
+  std::uniform_real_distribution<double> far(40.0, 80.0);
   std::uniform_real_distribution<double> angle(-std::numbers::pi, std::numbers::pi);
   const std::vector<double> taus = forecast_times(planner_config{});
   std::size_t up_front = 0;
@@ -232,8 +233,9 @@ TEST(collision_sets, neighbours_found_inert_from_their_forecast_placements_alone
   std::size_t not_inert = 0;
   for (std::size_t trial = 0; trial < testing::property_count(16); ++trial) {
     plan_input in = two_obstacle_scene(rng, trial);
-    for (obstacle_track& track : in.obstacles) {
-      const vec2 offset = distance(rng) * unit_vector(angle(rng));
+    for (std::size_t j = 0; j < in.obstacles.size(); ++j) {
+      obstacle_track& track = in.obstacles[j];
+      const vec2 offset = (j == 0 ? near(rng) : far(rng)) * unit_vector(angle(rng));
       for (observation& o : track.history) o.pose.position = o.pose.position + offset;
     }
     const prepared p = prepare(in, 0.05);
