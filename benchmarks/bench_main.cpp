@@ -129,6 +129,39 @@ void planner_following_case(benchmark::State& state) {
   timed_loop(state, [&] { return planner.plan(*in); });
 }
 
+/// The dense-traffic input with no obstacles but the first `state.range(0)` of its relevant
+/// neighbours that no maneuver comes near (`mm::capture::inert_obstacles`; 15 of its 40), planned by
+/// one `mm::planner` as a vehicle plans: what such neighbours add to a step (issue 5: neighbours that
+/// cannot interact must cost nothing). With `far`, the same neighbours moved 1 km away, where the
+/// relevance test (spec §9) drops them. Skipped with an error when the input has fewer.
+void planner_quiet_neighbours(benchmark::State& state, bool far) {
+  const mm::plan_input* in = following_input(state);
+  if (in == nullptr) return;
+  static const std::vector<std::size_t> inert = mm::capture::inert_obstacles(*in);
+  const auto count = static_cast<std::size_t>(state.range(0));
+  if (inert.size() < count) {
+    state.SkipWithError(("the dense-traffic input has " + std::to_string(inert.size()) +
+                         " neighbours that no maneuver comes near, not " + std::to_string(count))
+                            .c_str());
+    return;
+  }
+  mm::plan_input quiet = *in;
+  quiet.obstacles.clear();
+  for (std::size_t k = 0; k < count; ++k) {
+    mm::obstacle_track track = in->obstacles[inert[k]];
+    if (far) {
+      for (mm::observation& o : track.history) o.pose.position = o.pose.position + mm::vec2{1000.0, 0.0};
+    }
+    quiet.obstacles.push_back(std::move(track));
+  }
+  mm::planner planner;
+  timed_loop(state, [&] { return planner.plan(quiet); });
+  state.counters["relevant"] = static_cast<double>(mm::plan(quiet).work.relevant_obstacles);
+}
+
+void planner_inert_neighbours_case(benchmark::State& state) { planner_quiet_neighbours(state, false); }
+void planner_far_neighbours_case(benchmark::State& state) { planner_quiet_neighbours(state, true); }
+
 /// The captured input planned by one `mm::planner` every iteration, as a vehicle planning every step
 /// at an unchanged speed does: each call starts the planner again (its result is `mm::plan`'s, bit
 /// for bit) but keeps the sampled sets, the tree of blocks and the placements in the ego's frame.
@@ -233,6 +266,15 @@ void register_all(bool whole_roundabout) {
   }
   repeated(benchmark::RegisterBenchmark("plan_following", plan_following_case), 5)->Unit(benchmark::kMicrosecond);
   repeated(benchmark::RegisterBenchmark("planner_following", planner_following_case), 5)
+      ->Unit(benchmark::kMicrosecond);
+  repeated(benchmark::RegisterBenchmark("planner_inert_neighbours", planner_inert_neighbours_case), 5)
+      ->ArgName("count")
+      ->Arg(1)
+      ->Arg(15)
+      ->Unit(benchmark::kMicrosecond);
+  repeated(benchmark::RegisterBenchmark("planner_far_neighbours", planner_far_neighbours_case), 5)
+      ->ArgName("count")
+      ->Arg(15)
       ->Unit(benchmark::kMicrosecond);
   repeated(benchmark::RegisterBenchmark("plan_reference", plan_reference_case), 3)
       ->ArgName("obstacles")

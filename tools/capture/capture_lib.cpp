@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <thread>
 
+#include "mm/maneuver_samples.hpp"
 #include "mm/scenario_file/loader.hpp"
 #include "mm/sim/simulation.hpp"
 
@@ -15,6 +16,29 @@ double smallest_room(const plan_result& result) {
     room = std::min(room, std::max(result.mi_brake[i], result.mi_accelerate[i]));
   }
   return room;
+}
+
+void for_each_relevant(const plan_input& input, const plan_result& r,
+                       const std::function<void(std::size_t, const ego_sweep&, const forecast_obstacle&)>& each) {
+  const planner_config& config = input.config;
+  const maneuver nominal = clamp_to_limits(input.nominal, input.ego.speed, input.ego.limits);
+  const maneuver_samples samples =
+      sample_maneuvers(input.ego, nominal.curvature, config.displacement_horizon, config.resolution, false, false);
+  const collision_window window{config.displacement_horizon, config.collision_window, r.collision_time_step,
+                                config.safety_margin};
+  const ego_sweep sweep(input.ego, samples, window);
+  for (std::size_t j = 0; j < input.obstacles.size(); ++j) {
+    if (r.obstacles[j].relevant) each(j, sweep, {r.obstacles[j].motion, input.obstacles[j].shape});
+  }
+}
+
+std::vector<std::size_t> inert_obstacles(const plan_input& input) {
+  const plan_result r = plan(input);
+  std::vector<std::size_t> inert;
+  for_each_relevant(input, r, [&](std::size_t j, const ego_sweep& sweep, const forecast_obstacle& obstacle) {
+    if (clearance_field(sweep, obstacle, r.forecast_times, planner_clearance_cap).inert()) inert.push_back(j);
+  });
+  return inert;
 }
 
 sim::run_options every_core() {

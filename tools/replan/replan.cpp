@@ -16,8 +16,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "mm/capture.hpp"
 #include "mm/collision_sets.hpp"
-#include "mm/maneuver_samples.hpp"
 #include "mm/plan_input_json.hpp"
 #include "mm/reference_planner.hpp"
 #include "mm/tool_cli.hpp"
@@ -44,23 +44,15 @@ namespace {
 /// inert, and its sampled collisions summed over the forecast times. The first build also places the
 /// ego's maneuvers (the sweep keeps them), as the plan's first field does.
 void time_fields(const mm::plan_input& input, const mm::plan_result& r, int count) {
-  constexpr double clearance_cap = 2.0;  // [m], the planner's (core/src/pipeline.hpp)
-  const mm::planner_config& config = input.config;
-  const mm::maneuver nominal = mm::clamp_to_limits(input.nominal, input.ego.speed, input.ego.limits);
-  const mm::maneuver_samples samples =
-      mm::sample_maneuvers(input.ego, nominal.curvature, config.displacement_horizon, config.resolution, false, false);
-  const mm::collision_window window{config.displacement_horizon, config.collision_window, r.collision_time_step,
-                                    config.safety_margin};
-  const mm::ego_sweep sweep(input.ego, samples, window);
   mm::clearance_field::raster_scratch scratch;
-  for (std::size_t j = 0; j < input.obstacles.size(); ++j) {
-    if (!r.obstacles[j].relevant) continue;
-    const mm::forecast_obstacle obstacle{r.obstacles[j].motion, input.obstacles[j].shape};
+  mm::capture::for_each_relevant(input, r, [&](std::size_t j, const mm::ego_sweep& sweep,
+                                               const mm::forecast_obstacle& obstacle) {
     bool inert = false;
     std::size_t collisions = 0;
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < count; ++i) {
-      const mm::clearance_field field(sweep, obstacle, r.forecast_times, clearance_cap, {}, scratch);
+      const mm::clearance_field field(sweep, obstacle, r.forecast_times, mm::capture::planner_clearance_cap, {},
+                                      scratch);
       inert = field.inert();
       collisions = 0;
       for (std::size_t f = 0; f < r.forecast_times.size(); ++f) collisions += field.collisions(f).count();
@@ -70,7 +62,7 @@ void time_fields(const mm::plan_input& input, const mm::plan_result& r, int coun
                 static_cast<unsigned>(input.obstacles[j].id),
                 mm::norm(obstacle.motion.pose.position - input.ego.pose.position), obstacle.motion.speed,
                 obstacle.motion.yaw_rate, elapsed.count() / count, inert ? 1 : 0, collisions);
-  }
+  });
 }
 
 int replan(const std::string& path, int repeat, int fields, bool keep_planner, bool reference) {

@@ -1,11 +1,13 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <string_view>
 #include <utility>
 #include <vector>
 
+#include "mm/collision_sets.hpp"
 #include "mm/planner.hpp"
 #include "mm/sim/simulation.hpp"
 
@@ -30,6 +32,20 @@ interaction_count count_interactions(const plan_input& input);
 
 /// Smallest room max(MI−, MI+) over the forecast times of a plan.
 double smallest_room(const plan_result& result);
+
+/// The planner's clearance cap [m] (core/src/pipeline.hpp), for clearance fields built as it builds them.
+inline constexpr double planner_clearance_cap = 2.0;
+
+/// Calls `each(j, sweep, obstacle)` for every obstacle j that the plan `r` of `input` found
+/// relevant, with the ego's sweep as that plan built it (its sampled sets, collision window and
+/// forecast times) and the obstacle as it was forecast: what its clearance field is built from.
+void for_each_relevant(const plan_input& input, const plan_result& r,
+                       const std::function<void(std::size_t, const ego_sweep&, const forecast_obstacle&)>& each);
+
+/// The relevant obstacles of `input` that no maneuver comes near (their clearance field is inert:
+/// beyond the clearance cap at every time under every forecast time), as indices into
+/// `input.obstacles`.
+std::vector<std::size_t> inert_obstacles(const plan_input& input);
 
 /// A planning step taken from a scenario: the scenario (built-in name or file), its parameter
 /// overrides, the planning vehicle and the time at which its input is taken.
