@@ -438,8 +438,8 @@ class clearance_field {
     std::size_t refinements = 0;           ///< refinements of a sampled minimum run (`refined_minimum`)
     std::size_t translation_minima = 0;    ///< closed-form minima over the straight part (`smallest_signed_distance`)
     /// Placements of the obstacle computed up front: at the forecast times, then, unless it is
-    /// found inert from those alone (`far_at_every_time`), at every sample time they share and at
-    /// the start of each straight part.
+    /// found inert from those alone (`far_at_every_time`), at every sample time the forecast times
+    /// share and at the start of each straight part.
     std::size_t placements = 0;
   };
   const work& statistics() const { return work_; }
@@ -539,7 +539,8 @@ class clearance_field {
   /// disc). On the curve the forecast times share, the distance at t between two known placements
   /// at τ_l ≤ t ≤ τ_{l+1} is bounded below by max(d_l − v (t − τ_l), d_{l+1} − v (τ_{l+1} − t)) (the
   /// reference point moves at speed v); after τ_i it is taken exactly. Only where it holds is it
-  /// used, so a field is inert whether or not this shows it (docs/performance.md, Many agents).
+  /// used, so a field is inert whether or not this shows it (docs/performance.md, How the fast
+  /// path works).
   bool far_at_every_time(vec2 start) const;
   /// Marks in `state` every sample that overlaps the obstacle placed at `o` at time index k.
   void raster(std::size_t k, const obstacle_at& o, raster_state& state);
