@@ -739,11 +739,10 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   // block waits for the first time index at which one of its samples can overlap: the signed
   // distance changes no faster than L under any forecast, so a wait computed on the shared times
   // holds for every forecast time's own times too.
-  const double margin = window.margin;
   bool near = false;
   // No sample can overlap the obstacle at time index k (and none comes within the walking cap).
   const auto out_of_reach = [&](std::size_t k, const obstacle_at& o) {
-    const double gap = norm(o.position - start) - sweep.reach_radius(k) - reach_ - margin;
+    const double gap = reach_gap(k, norm(o.position - start));
     if (gap < walk_cap_) near = true;
     return gap > band_;
   };
@@ -802,12 +801,7 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
     // form, bounds every sample (for inertness, and whether to look at the part at all); then every
     // block is tested once in closed form.
     {
-      const widening reach = sweep.straight_reach();
-      const double from = part_start_[i];
-      const double radius = reach.base + reach.rate * (from - window.horizon);
-      const double closest = closest_approach_to_growing_disc(part_obstacle_[i].position - start, part_velocity_[i],
-                                                              reach.rate, window.duration - from);
-      const double gap = closest - 1e-12 * std::abs(closest) - 1e-9 - radius - reach_ - margin;
+      const double gap = straight_reach_gap(i, part_obstacle_[i].position - start, part_velocity_[i]);
       if (gap < walk_cap_) near = true;
       if (gap <= 0.0) raster_straight_part(i, own);
     }
@@ -837,6 +831,19 @@ clearance_field::clearance_field(const ego_sweep& sweep, const forecast_obstacle
   }
 }
 
+double clearance_field::reach_gap(std::size_t k, double distance) const {
+  return distance - sweep_.reach_radius(k) - reach_ - sweep_.window().margin;
+}
+
+double clearance_field::straight_reach_gap(std::size_t i, vec2 offset, vec2 velocity) const {
+  const collision_window& window = sweep_.window();
+  const widening reach = sweep_.straight_reach();
+  const double from = part_start_[i];
+  const double radius = reach.base + reach.rate * (from - window.horizon);
+  const double closest = closest_approach_to_growing_disc(offset, velocity, reach.rate, window.duration - from);
+  return closest - 1e-12 * std::abs(closest) - 1e-9 - radius - reach_ - window.margin;
+}
+
 bool clearance_field::far_at_every_time(vec2 start) const {
   const std::vector<double>& times = sweep_.times();
   const collision_window& window = sweep_.window();
@@ -844,19 +851,14 @@ bool clearance_field::far_at_every_time(vec2 start) const {
   // Rounding of the placements (forecast_pose, the construction's own order of operations) and of
   // the distances, far below this at any coordinates a scene has [m].
   const double slack = 1e-6 + 1e-12 * (norm(start) + norm(obstacle_.motion.pose.position) + speed * window.duration);
-  const double need = walk_cap_ + reach_ + window.margin + slack;
-  const auto far = [&](double distance, std::size_t k) { return distance - sweep_.reach_radius(k) >= need; };
+  const double need = walk_cap_ + slack;
+  const auto far = [&](double distance, std::size_t k) { return reach_gap(k, distance) >= need; };
   const std::size_t slots = part_start_.size();
   const auto along = [&](std::size_t i, double t) {
     return turn_end_[i].position + speed * (t - taus_[i]) * turn_end_[i].direction;
   };
   const auto straight_part_far = [&](std::size_t i) {
-    const double from = part_start_[i];
-    const widening reach = sweep_.straight_reach();
-    const double radius = reach.base + reach.rate * (from - window.horizon);
-    const double closest = closest_approach_to_growing_disc(along(i, from) - start, speed * turn_end_[i].direction,
-                                                            reach.rate, window.duration - from);
-    return closest - radius >= need;
+    return straight_reach_gap(i, along(i, part_start_[i]) - start, speed * turn_end_[i].direction) >= need;
   };
   if (independent_) {
     if (slots == 0) return true;

@@ -542,6 +542,14 @@ class clearance_field {
   /// used, so a field is inert whether or not this shows it (docs/performance.md, How the fast
   /// path works).
   bool far_at_every_time(vec2 start) const;
+  /// How far the obstacle's reference point, `distance` [m] from the centre of the ego's reach at
+  /// time index k, lies outside that reach: less its radius then, the bounding radii and the margin
+  /// [m]. At or above the walking cap no sample comes within it; above θ (`band_`) none can overlap.
+  double reach_gap(std::size_t k, double distance) const;
+  /// The least `reach_gap` over the straight part of forecast time i (slot i), the obstacle starting
+  /// at `offset` [m] from the reach's centre and moving at `velocity` [m/s] (the closest approach to
+  /// the growing disc, rounded down).
+  double straight_reach_gap(std::size_t i, vec2 offset, vec2 velocity) const;
   /// Marks in `state` every sample that overlaps the obstacle placed at `o` at time index k.
   void raster(std::size_t k, const obstacle_at& o, raster_state& state);
   /// `raster` of block `index` (and its halves when it is undecided as a whole).
