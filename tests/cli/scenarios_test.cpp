@@ -22,6 +22,7 @@ namespace sf = mm::scenario_file;
 struct finished_run {
   run_outcome outcome;
   std::vector<std::vector<std::string>> decisions;  ///< rows of decisions.csv
+  std::vector<std::vector<std::string>> map;        ///< rows of map.csv
   nlohmann::json summary;
 };
 
@@ -38,8 +39,22 @@ finished_run run_builtin(const std::string& name, const std::string& dir_name,
   finished_run r;
   r.outcome = run_scenario(loaded, settings);
   r.decisions = csv_rows(dir / "decisions.csv");
+  r.map = csv_rows(dir / "map.csv");
   r.summary = nlohmann::json::parse(read_file(dir / "summary.json"));
   return r;
+}
+
+/// max(MI−, MI+) of the first plan under its selected forecast time τ̄ (map.csv: t, agent, tau,
+/// mi_brake, mi_accel, excluded; decisions.csv: t, agent, tau_bar, ...).
+double first_room(const finished_run& r) {
+  const std::vector<std::string>& first = r.decisions.at(0);
+  for (const auto& row : r.map) {
+    if (row[0] == first[0] && row[1] == first[1] && std::abs(std::stod(row[2]) - std::stod(first[2])) < 1e-9) {
+      return std::max(std::stod(row[3]), std::stod(row[4]));
+    }
+  }
+  ADD_FAILURE() << "no map row at the first decision's forecast time";
+  return -1.0;
 }
 
 /// The first time [s] of a non-nominal decision of family `fam`, or -1.
@@ -211,6 +226,29 @@ TEST(builtin_scenarios, s7_a_passes_the_crosswalk_crowd_without_touching_anyone)
   EXPECT_GT(*m.min_dist_m, 0.15);  // measured 0.31 m (the margin is 0.3 m)
   EXPECT_GT(m.time_in_brake_s, 1.0);  // measured 2.8 s
   EXPECT_LT(m.min_speed_kmh, 29.0);   // measured 25.4 km/h
+}
+
+// --- example scenarios -------------------------------------------------------------------------
+
+TEST(example_scenarios, kerbs_along_the_roads_keep_a_in_its_lane_where_s1_swerves_round_b) {
+  // examples/scenarios/s1-crossing-kerbs.yaml: S1 with the roads' edges as static obstacles
+  // (docs/method.md §5, item 16). Measured on 2026-12-05: no swerve (largest lateral offset
+  // 0.0013 m against 1.04 m), 0.325 m from B, room 0.067 at the start against 1.
+  const finished_run kerbs = run_builtin(MM_SOURCE_DIR "/examples/scenarios/s1-crossing-kerbs.yaml", "s1_kerbs");
+  const finished_run open = run_builtin("s1-crossing", "s1_open");
+  const mm::sim::run_metrics& k = kerbs.outcome.metrics.at(0);
+  const mm::sim::run_metrics& o = open.outcome.metrics.at(0);
+  EXPECT_FALSE(k.crash);
+  EXPECT_EQ(k.closest_agent, "B");
+  EXPECT_GT(*k.min_dist_m, 0.15);
+  EXPECT_EQ(k.bypass, mm::sim::bypass_side::none);
+  EXPECT_LT(k.max_lateral_offset_m, 0.05);
+  EXPECT_GT(o.max_lateral_offset_m, 0.5);
+  EXPECT_GT(k.time_in_brake_s, 1.0);
+  // Before B appears only the kerbs take room: nearly every steering maneuver reaches one within
+  // the 3 s window.
+  EXPECT_LT(first_room(kerbs), 0.2);
+  EXPECT_DOUBLE_EQ(first_room(open), 1.0);
 }
 
 // --- output files ------------------------------------------------------------------------------
