@@ -205,7 +205,7 @@ std::vector<std::uint32_t> road_users_to_measure(const cr::scenario& s, const me
   if (const auto ego = planning_problem_ego(s)) return {*ego};
   throw input_error("no obstacle of the file replays the ego of its planning problem; choose the road user to measure "
                     "with --agent ID (or --agent all); the road users that can be measured are: " +
-                    measurable_ids(s));
+                    cr::measurable_road_users_text(s));
 }
 
 std::optional<std::uint32_t> planning_problem_ego(const cr::scenario& s) {
@@ -213,12 +213,6 @@ std::optional<std::uint32_t> planning_problem_ego(const cr::scenario& s) {
     if (const auto ego = cr::recorded_ego(s, p)) return ego;
   }
   return std::nullopt;
-}
-
-std::string measurable_ids(const cr::scenario& s) {
-  std::string ids;
-  for (std::uint32_t id : cr::measurable_road_users(s)) ids += (ids.empty() ? "" : ", ") + std::to_string(id);
-  return ids.empty() ? std::string("none") : ids;
 }
 
 measure_outcome measure_recording(const cr::scenario& s, const std::string& name, const measure_settings& settings) {

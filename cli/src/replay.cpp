@@ -12,7 +12,7 @@ namespace cr = mm::commonroad;
 std::uint32_t default_replay_agent(const cr::scenario& recording) {
   if (const auto ego = planning_problem_ego(recording)) return *ego;
   throw input_error("no planning problem of the file names a recorded road user: give --agent ID, one of: " +
-                    measurable_ids(recording));
+                    cr::measurable_road_users_text(recording));
 }
 
 scenario_file::loaded_scenario replay_loaded(const cr::scenario& recording, const cr::replay_options& options,

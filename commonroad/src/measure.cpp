@@ -116,6 +116,16 @@ std::vector<std::uint32_t> measurable_road_users(const scenario& s) {
   return ids;
 }
 
+std::string measurable_road_users_text(const scenario& s) {
+  constexpr std::size_t listed = 20;
+  const std::vector<std::uint32_t> ids = measurable_road_users(s);
+  if (ids.empty()) return "none";
+  std::string text;
+  for (std::size_t i = 0; i < ids.size() && i < listed; ++i) text += (i ? ", " : "") + std::to_string(ids[i]);
+  if (ids.size() > listed) text += ", … (" + std::to_string(ids.size()) + " in all)";
+  return text;
+}
+
 std::optional<std::uint32_t> recorded_ego(const scenario& s, const planning_problem& problem) {
   const auto measurable = [](const obstacle* o) { return o != nullptr && can_be_measured(*o); };
   if (const obstacle* o = find_obstacle(s, problem.id); measurable(o)) return o->id;

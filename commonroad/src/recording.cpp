@@ -33,18 +33,11 @@ const state* state_at(const obstacle& o, std::int64_t step) {
   return &o.states[static_cast<std::size_t>(index)];
 }
 
-std::string list_ids(const std::vector<std::uint32_t>& ids) {
-  std::string text;
-  for (std::size_t i = 0; i < ids.size() && i < 20; ++i) text += (i ? ", " : "") + std::to_string(ids[i]);
-  if (ids.size() > 20) text += ", …";
-  return text.empty() ? "none" : text;
-}
-
 const obstacle& measured(const scenario& s, std::uint32_t agent) {
   const obstacle* o = find_obstacle(s, agent);
   const auto error = [&](const std::string& why) {
     return measure_error("road user " + std::to_string(agent) + ": " + why +
-                         "; the road users that can be measured are: " + list_ids(measurable_road_users(s)));
+                         "; the road users that can be measured are: " + measurable_road_users_text(s));
   };
   if (o == nullptr) throw error("no obstacle has this id");
   if (o->role == obstacle_role::static_obstacle) throw error("a static obstacle (" + o->type + ")");

@@ -28,9 +28,6 @@ double step_time(const scenario& s, std::int64_t step);
 /// The state of `o` at `step`, or null when it is not recorded then (states are at consecutive steps).
 const state* state_at(const obstacle& o, std::int64_t step);
 
-/// At most 20 ids, comma-separated ("none" for none).
-std::string list_ids(const std::vector<std::uint32_t>& ids);
-
 /// The road user `agent` as the planner's ego, or `measure_error` saying why it cannot be.
 const obstacle& measured(const scenario& s, std::uint32_t agent);
 

@@ -199,6 +199,24 @@ TEST(measure, pedestrians_static_obstacles_and_unknown_ids_cannot_be_measured_an
   EXPECT_THROW(planning_input(s, of(4), 2), measure_error);  // car 4 appears at step 5
 }
 
+TEST(measure, the_list_of_road_users_that_can_be_measured_stops_after_twenty_and_says_how_many_there_are) {
+  scenario s = crossing();
+  EXPECT_EQ(measurable_road_users_text(s), "1, 2, 4, 5");
+  for (std::uint32_t id = 10; id < 30; ++id) {
+    s.obstacles.push_back(recorded(id, "car", {{-80, 7.0 + id}, 0.0}, 10.0, 0.0, 0, 30, 0.1));
+  }
+  // 24 in all: 1, 2, 4, 5 and 10–29.
+  const std::string text = measurable_road_users_text(s);
+  EXPECT_EQ(text.rfind("1, 2, 4, 5, 10, 11, ", 0), 0U) << text;
+  EXPECT_NE(text.find(", 25, … (24 in all)"), std::string::npos) << text;
+  EXPECT_EQ(text.find("26"), std::string::npos) << text;
+
+  scenario walkers;
+  walkers.time_step = 0.1;
+  walkers.obstacles.push_back(recorded(3, "pedestrian", {{-40, 40}, 0.0}, 1.4, 0.0, 0, 30, 0.1, mm::disc{0.3}));
+  EXPECT_EQ(measurable_road_users_text(walkers), "none");
+}
+
 TEST(measure, the_recorded_ego_is_the_obstacle_with_the_problem_s_id_its_id_minus_90000_or_the_one_at_its_start) {
   scenario s = crossing();
   EXPECT_EQ(recorded_ego(s, s.planning_problems[0]), 1U);  // at its start

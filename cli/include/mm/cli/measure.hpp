@@ -40,10 +40,6 @@ std::vector<std::uint32_t> road_users_to_measure(const commonroad::scenario& s, 
 /// (`mm::commonroad::recorded_ego`), or none.
 std::optional<std::uint32_t> planning_problem_ego(const commonroad::scenario& s);
 
-/// The ids of the road users that can be measured (`mm::commonroad::measurable_road_users`), as
-/// "42, 44", or "none": for the messages that ask for `--agent ID`.
-std::string measurable_ids(const commonroad::scenario& s);
-
 /// Measures the road users of the recording `s` (named `name`, the file's stem) at every recorded
 /// step and writes trajectories.csv, map.csv, decisions.csv, summary.json and scene.json into
 /// `settings.out_dir`, in the formats of `maneuvermap run` (docs/outputs.md, docs/commonroad.md),

@@ -69,6 +69,10 @@ maneuver recorded_maneuver(const obstacle& o, std::size_t index, double dt);
 /// The dynamic obstacles that can be measured: every one that is not a pedestrian, in file order.
 std::vector<std::uint32_t> measurable_road_users(const scenario& s);
 
+/// `measurable_road_users(s)` for a message that asks for a road user: the first 20 ids,
+/// comma-separated, then "… (N in all)" when there are more; "none" when there is none.
+std::string measurable_road_users_text(const scenario& s);
+
 /// The obstacle that replays the ego of `problem` (docs/commonroad.md): the one with the problem's
 /// id (OpenSCENARIO conversions), else id − 90000 (inD conversions), else the one whose first state
 /// lies within 0.5 m of the problem's initial position at its initial step with a heading within
