@@ -24,6 +24,7 @@ namespace {
 using json = nlohmann::ordered_json;
 using output::footprint_json;
 using output::point;
+using output::points;
 using output::rounded;
 using output::write_text;
 
@@ -75,9 +76,7 @@ json scene_json(const scenario_file::loaded_scenario& loaded) {
   for (const mm::sim::scripted_vehicle& v : s.scripted_vehicles) motion(v.name, "scripted_vehicle", v.shape, v.motion);
   for (const mm::sim::pedestrian& p : s.pedestrians) motion(p.name, "pedestrian", mm::disc{p.radius}, p.motion);
   for (const mm::sim::static_obstacle& o : s.static_obstacles) {
-    json vertices = json::array();
-    for (vec2 v : o.vertices) vertices.push_back(point(v));
-    agents.push_back({{"name", o.name}, {"kind", "static_obstacle"}, {"vertices_m", vertices}});
+    agents.push_back({{"name", o.name}, {"kind", "static_obstacle"}, {"vertices_m", points(o.vertices)}});
   }
 
   json ring = nullptr;

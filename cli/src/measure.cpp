@@ -43,25 +43,6 @@ std::pair<std::int64_t, std::int64_t> step_range(const cr::scenario& s) {
   return {first, last};
 }
 
-/// The corners of `shape` placed at `p` (static obstacles in scene.json), the disc as 16 points.
-json world_polygon(const mm::footprint& shape, pose p) {
-  std::vector<vec2> local;
-  if (const auto* r = std::get_if<mm::rectangle>(&shape)) {
-    local = {{r->length / 2, r->width / 2}, {-r->length / 2, r->width / 2}, {-r->length / 2, -r->width / 2},
-             {r->length / 2, -r->width / 2}};
-  } else if (const auto* d = std::get_if<mm::disc>(&shape)) {
-    for (int k = 0; k < 16; ++k) {
-      const double a = 2.0 * std::numbers::pi * k / 16.0;
-      local.push_back({d->radius * std::cos(a), d->radius * std::sin(a)});
-    }
-  } else {
-    local = std::get<mm::convex_polygon>(shape).vertices;
-  }
-  json vertices = json::array();
-  for (vec2 v : local) vertices.push_back(point(to_world(p, v)));
-  return vertices;
-}
-
 json scene_json(const cr::scenario& s, const std::string& name, const std::vector<std::uint32_t>& measured) {
   const auto [first, last] = step_range(s);
   json agents = json::array();
@@ -71,7 +52,7 @@ json scene_json(const cr::scenario& s, const std::string& name, const std::vecto
       const cr::state& x = o.states.front();
       agents.push_back({{"name", name_of(o.id)},
                         {"kind", "static_obstacle"},
-                        {"vertices_m", world_polygon(o.shape, pose{x.position, wrap_angle(x.orientation)})}});
+                        {"vertices_m", output::points(cr::world_polygon(o.shape, x))}});
       continue;
     }
     const bool is_measured = std::find(measured.begin(), measured.end(), o.id) != measured.end();
@@ -86,11 +67,7 @@ json scene_json(const cr::scenario& s, const std::string& name, const std::vecto
   }
   json lanelets = json::array();
   for (const cr::lanelet& l : s.lanelets) {
-    json left = json::array();
-    json right = json::array();
-    for (vec2 p : l.left_bound) left.push_back(point(p));
-    for (vec2 p : l.right_bound) right.push_back(point(p));
-    lanelets.push_back({{"id", l.id}, {"left_m", left}, {"right_m", right}});
+    lanelets.push_back({{"id", l.id}, {"left_m", output::points(l.left_bound)}, {"right_m", output::points(l.right_bound)}});
   }
   return {{"format", "maneuvermap-scene/1"},
           {"scenario", name},

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <variant>
@@ -27,6 +28,13 @@ inline double rounded(double value, int decimals = 6) {
 /// A scene coordinate pair [m], to 4 decimals.
 inline json point(vec2 p) { return json::array({rounded(p.x, 4), rounded(p.y, 4)}); }
 
+/// The points of a polygon or path, each as `point`.
+inline json points(std::span<const vec2> ps) {
+  json out = json::array();
+  for (vec2 p : ps) out.push_back(point(p));
+  return out;
+}
+
 /// {"shape": "rectangle", "length_m", "width_m"}, {"shape": "disc", "radius_m"} or
 /// {"shape": "polygon", "vertices_m"} (body frame).
 inline json footprint_json(const mm::footprint& shape) {
@@ -34,9 +42,7 @@ inline json footprint_json(const mm::footprint& shape) {
     return {{"shape", "rectangle"}, {"length_m", rounded(r->length, 4)}, {"width_m", rounded(r->width, 4)}};
   }
   if (const auto* d = std::get_if<mm::disc>(&shape)) return {{"shape", "disc"}, {"radius_m", rounded(d->radius, 4)}};
-  json vertices = json::array();
-  for (vec2 v : std::get<mm::convex_polygon>(shape).vertices) vertices.push_back(point(v));
-  return {{"shape", "polygon"}, {"vertices_m", vertices}};
+  return {{"shape", "polygon"}, {"vertices_m", points(std::get<mm::convex_polygon>(shape).vertices)}};
 }
 
 /// Writes `text` to `file`; throws std::runtime_error naming the file when that fails.

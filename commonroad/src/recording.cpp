@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <variant>
 
+#include "mm/footprint.hpp"
 #include "mm/geometry.hpp"
 
 namespace mm::commonroad::detail {
@@ -67,3 +69,17 @@ std::vector<vec2> circle_polygon(double radius) {
 }
 
 }  // namespace mm::commonroad::detail
+
+namespace mm::commonroad {
+
+std::vector<vec2> world_polygon(const footprint& shape, const state& x) {
+  if (const auto* d = std::get_if<disc>(&shape)) {
+    std::vector<vec2> corners = detail::circle_polygon(d->radius);
+    for (vec2& corner : corners) corner = x.position + corner;
+    return corners;
+  }
+  const placed_footprint placed = place(shape, pose{x.position, x.orientation});
+  return {placed.vertices.begin(), placed.vertices.begin() + static_cast<std::ptrdiff_t>(placed.vertex_count)};
+}
+
+}  // namespace mm::commonroad

@@ -62,19 +62,6 @@ sim::speed_profile profile_of(const recorded_path& p, double dt) {
   return profile;
 }
 
-/// The world polygon of a footprint at a recorded state: a rectangle's or polygon's corners, a
-/// disc's circumscribed 16-gon.
-std::vector<vec2> world_polygon(const footprint& shape, const state& x) {
-  const pose where{x.position, x.orientation};
-  if (const auto* d = std::get_if<disc>(&shape)) {
-    std::vector<vec2> corners = circle_polygon(d->radius);
-    for (vec2& corner : corners) corner = x.position + corner;
-    return corners;
-  }
-  const placed_footprint placed = place(shape, where);
-  return {placed.vertices.begin(), placed.vertices.begin() + static_cast<std::ptrdiff_t>(placed.vertex_count)};
-}
-
 /// `value` to 6 significant digits ("1e+117", "0.1").
 std::string general(double value) {
   char buffer[32];

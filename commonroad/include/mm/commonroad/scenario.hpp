@@ -60,4 +60,10 @@ struct scenario {
   std::vector<planning_problem> planning_problems;
 };
 
+/// The corners [m] of `shape` at the recorded state `x`, in the world: a rectangle's or a convex
+/// polygon's, placed at x's position and orientation; a disc as the regular 16-gon around it
+/// (never smaller than the disc). How a static obstacle becomes a polygon in a replay's scenario
+/// and in the scene.json of a measurement.
+std::vector<vec2> world_polygon(const footprint& shape, const state& x);
+
 }  // namespace mm::commonroad
