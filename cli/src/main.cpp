@@ -12,6 +12,7 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <numeric>
 #include <thread>
 
 #include "mm/cli/commands.hpp"
@@ -22,6 +23,7 @@
 #include "mm/commonroad/reader.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/sim/memory.hpp"
+#include "output_files.hpp"
 
 namespace {
 
@@ -202,7 +204,7 @@ int snapshot_command(const scenario_options& o, double time, const std::string& 
 }
 
 struct measure_command_options {
-  std::string file;
+  std::vector<std::string> files;
   std::vector<std::string> agents;
   std::string policy;
   std::string out;
@@ -232,22 +234,66 @@ void parse_agents(const std::vector<std::string>& texts, mm::cli::measure_settin
   }
 }
 
-int measure_command(const measure_command_options& o) {
-  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
-  const std::string name = std::filesystem::path(o.file).stem().string();
-  mm::cli::measure_settings settings;
-  parse_agents(o.agents, settings);
-  if (!o.policy.empty()) settings.policy = policy_option(o.policy);
-  settings.out_dir = o.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(o.out);
-  settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
-  settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
+/// Measures one file into `settings.out_dir` and prints its table; returns what it measured.
+mm::cli::measure_outcome measure_file(const std::string& file, const std::string& name,
+                                      const mm::cli::measure_settings& settings, bool plots) {
+  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(file);
   const mm::cli::measure_outcome outcome = mm::cli::measure_recording(recording, name, settings);
   std::cout << fmt::format("{}: CommonRoad {}, {} road users and obstacles, time step {} s; policy {}\n", name,
                            recording.version, recording.obstacles.size(), mm::cli::fixed(recording.time_step, 3),
                            sf::policy_name(settings.policy));
   std::cout << mm::cli::measurement_table(outcome);
   std::cout << "written to " << settings.out_dir.string() << "/\n";
-  if (o.plots) plot_into(settings.out_dir);
+  if (plots) plot_into(settings.out_dir);
+  return outcome;
+}
+
+/// `maneuvermap measure FILE...`: one file into --out (default out/<name>); several, each into
+/// <out>/<name>/ (default out/measure) and one row per measured road user into
+/// <out>/measurements.csv.
+int measure_command(const measure_command_options& o) {
+  mm::cli::measure_settings settings;
+  parse_agents(o.agents, settings);
+  if (!o.policy.empty()) settings.policy = policy_option(o.policy);
+  settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
+  settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
+  std::vector<std::string> names;
+  for (const std::string& file : o.files) {
+    const std::string name = std::filesystem::path(file).stem().string();
+    if (const auto same = std::find(names.begin(), names.end(), name); same != names.end()) {
+      throw mm::cli::input_error(fmt::format("{} and {}: two files named {}; each file's outputs go to a folder of its name",
+                                             o.files[static_cast<std::size_t>(same - names.begin())], file, name));
+    }
+    names.push_back(name);
+  }
+  if (o.files.size() == 1) {
+    settings.out_dir = o.out.empty() ? std::filesystem::path("out") / names.front() : std::filesystem::path(o.out);
+    measure_file(o.files.front(), names.front(), settings, o.plots);
+    return exit_ok;
+  }
+  if (!settings.agents.empty()) {
+    throw mm::cli::input_error("--agent ID names a road user of one file; with several files give --agent all, or no "
+                               "--agent for each file's recorded ego");
+  }
+  const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / "measure" : std::filesystem::path(o.out);
+  std::vector<mm::cli::measured_file> measured;
+  for (std::size_t i = 0; i < o.files.size(); ++i) {
+    settings.out_dir = out / names[i];
+    try {
+      measured.push_back({names[i], measure_file(o.files[i], names[i], settings, o.plots)});
+    } catch (const mm::cli::input_error& e) {
+      throw mm::cli::input_error(o.files[i] + ": " + e.what());
+    } catch (const mm::commonroad::measure_error& e) {
+      throw mm::commonroad::measure_error(o.files[i] + ": " + e.what());
+    }
+  }
+  mm::cli::output::write_text(out / "measurements.csv", mm::cli::measurements_csv(measured));
+  std::cout << fmt::format("{} files, {} road users: {}\n", measured.size(),
+                           std::accumulate(measured.begin(), measured.end(), std::size_t{0},
+                                           [](std::size_t n, const mm::cli::measured_file& f) {
+                                             return n + f.outcome.measurements.size();
+                                           }),
+                           (out / "measurements.csv").string());
   return exit_ok;
 }
 
@@ -355,15 +401,19 @@ int main(int argc, char** argv) {
   measure_command_options measure_options;
   CLI::App* measure = app.add_subcommand(
       "measure", "Measure the room to maneuver of road users recorded in a CommonRoad file: their Maneuverability Maps");
-  measure->add_option("FILE", measure_options.file, "CommonRoad scenario file (XML, version 2018b or 2020a)")
+  measure->add_option("FILE", measure_options.files,
+                      "CommonRoad scenario files (XML, version 2018b or 2020a); several: each into a folder of its name, "
+                      "and one row per measured road user into measurements.csv")
       ->required()
-      ->type_name("FILE.xml");
+      ->type_name("FILE.xml...");
   measure->add_option("--agent", measure_options.agents,
                       "Road user to measure, by obstacle id (repeatable), or all (default: the recorded ego of the planning problem)")
       ->type_name("ID|all");
   measure->add_option("--policy", measure_options.policy, "Forecast policy: adj (default), const:SECONDS or robust")
       ->type_name("adj|const:SECONDS|robust");
-  measure->add_option("--out", measure_options.out, "Output directory (default out/<file name without .xml>)")->type_name("DIR");
+  measure->add_option("--out", measure_options.out,
+                      "Output directory (default out/<file name without .xml>; with several files out/measure)")
+      ->type_name("DIR");
   measure->add_option("--jobs,-j", measure_options.jobs,
                       "Road users measured at a time (outputs do not depend on it; default: the number of cores)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{256}))

@@ -279,6 +279,20 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
   return outcome;
 }
 
+std::string measurements_csv(std::span<const measured_file> files) {
+  std::string text = "file,agent,steps,least_room,least_room_time_s,unsafe_steps,earliest_ttc_s,earliest_ttc_time_s\n";
+  for (const measured_file& f : files) {
+    for (const cr::measurement& m : f.outcome.measurements) {
+      const measurement_summary sum = summarize(m);
+      const bool ttc = std::isfinite(sum.earliest_ttc);
+      text += fmt::format("{},{},{},{},{},{},{},{}\n", output::csv_field(f.name), m.agent, sum.steps, fixed(sum.least_room),
+                          fixed(sum.least_room_time), sum.unsafe_steps,
+                          ttc ? fixed(sum.earliest_ttc) : "", ttc ? fixed(sum.earliest_ttc_time) : "");
+    }
+  }
+  return text;
+}
+
 std::string measurement_table(const measure_outcome& outcome) {
   std::string text = fmt::format("{:>10}  {:>5}  {:>10}  {:>8}  {:>12}  {:>8}  {:>8}\n", "road user", "steps",
                                  "least room", "at t [s]", "unsafe steps", "min TTC", "at t [s]");

@@ -28,6 +28,19 @@ inline double rounded(double value, int decimals = 6) {
 /// A scene coordinate pair [m], to 4 decimals.
 inline json point(vec2 p) { return json::array({rounded(p.x, 4), rounded(p.y, 4)}); }
 
+/// A CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180; a line break
+/// becomes a space).
+inline std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"') out += "\"\"";
+    else if (c == '\n' || c == '\r') out += ' ';
+    else out += c;
+  }
+  return out + "\"";
+}
+
 /// The points of a polygon or path, each as `point`.
 inline json points(std::span<const vec2> ps) {
   json out = json::array();

@@ -40,6 +40,7 @@ const builtin_sweep* find_builtin_sweep(std::string_view name) {
 
 namespace {
 
+using output::csv_field;
 using output::write_text;
 
 namespace sf = mm::scenario_file;
@@ -159,18 +160,6 @@ std::string policy_slug(const std::string& policy) {
     if (c != ':') out += c;
   }
   return out;
-}
-
-/// A CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180).
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"') out += "\"\"";
-    else if (c == '\n' || c == '\r') out += ' ';
-    else out += c;
-  }
-  return out + "\"";
 }
 
 std::string shell_word(const std::string& word) {

@@ -75,6 +75,55 @@ TEST(maneuvermap_measure, agent_all_measures_every_vehicle_and_no_pedestrian_or_
   EXPECT_FALSE(contains(r.out, "        43 ")) << r.out;  // the parked vehicle
 }
 
+TEST(maneuvermap_measure, several_files_go_each_into_a_folder_of_its_name_and_into_one_table_of_every_road_user) {
+  const temp_dir dir("measure_several");
+  const std::string tutorial = recording("ZAM_Tutorial-1_2_T-1");
+  const std::string pedestrian = recording("OSC_PedestrianCollision-1_1_T-1");
+  const result r = measure(tutorial + " " + pedestrian + " --agent all --out " + (dir / "all").string(), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "2 files, 3 road users")) << r.out;
+  // Each file's own outputs, the same bytes as when it is measured alone.
+  ASSERT_EQ(measure(pedestrian + " --agent all --out " + (dir / "alone").string(), dir).code, 0);
+  for (const char* file : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json", "rooms.csv"}) {
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir / "all/ZAM_Tutorial-1_2_T-1" / file)) << file;
+    EXPECT_EQ(read_file(dir / "all/OSC_PedestrianCollision-1_1_T-1" / file), read_file(dir / "alone" / file)) << file;
+  }
+  // One row per road user, in the files' order, with its summary's values.
+  std::string header;
+  const auto rows = csv_rows(dir / "all/measurements.csv", &header);
+  EXPECT_EQ(header, "file,agent,steps,least_room,least_room_time_s,unsafe_steps,earliest_ttc_s,earliest_ttc_time_s");
+  ASSERT_EQ(rows.size(), 3U);
+  EXPECT_EQ(rows[0][0], "ZAM_Tutorial-1_2_T-1");
+  EXPECT_EQ(rows[0][1], "42");
+  EXPECT_EQ(rows[1][1], "44");
+  EXPECT_EQ(rows[1][6], "") << "44 is never on a collision course";
+  EXPECT_EQ(rows[2][0], "OSC_PedestrianCollision-1_1_T-1");
+  EXPECT_EQ(rows[2][1], "34");
+  EXPECT_EQ(rows[2][2], "93");
+  EXPECT_EQ(rows[2][3], "0.000000") << "it drives into the pedestrian";
+  const std::string summary = read_file(dir / "alone/summary.json");
+  EXPECT_TRUE(contains(summary, "\"unsafe_steps\": " + rows[2][5])) << summary;
+
+  // Without --agent each file's recorded ego; a file without one stops the command, named.
+  const result no_ego = measure(pedestrian + " " + tutorial + " --out " + (dir / "egos").string(), dir);
+  EXPECT_EQ(no_ego.code, 2);
+  EXPECT_TRUE(contains(no_ego.err, "ZAM_Tutorial-1_2_T-1.xml: no obstacle of the file replays the ego")) << no_ego.err;
+  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "egos/OSC_PedestrianCollision-1_1_T-1/map.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "egos/measurements.csv"));
+
+  const result twice = measure(tutorial + " " + tutorial + " --agent all --out " + (dir / "twice").string(), dir);
+  EXPECT_EQ(twice.code, 2);
+  EXPECT_TRUE(contains(twice.err, "two files named ZAM_Tutorial-1_2_T-1")) << twice.err;
+  const result ids = measure(tutorial + " " + pedestrian + " --agent 42 --out " + (dir / "ids").string(), dir);
+  EXPECT_EQ(ids.code, 2);
+  EXPECT_TRUE(contains(ids.err, "with several files give --agent all")) << ids.err;
+  const result broken = measure(tutorial + " " + (dir / "no-such-file.xml").string() + " --agent all --out " +
+                                    (dir / "broken").string(),
+                                dir);
+  EXPECT_EQ(broken.code, 2);
+  EXPECT_TRUE(contains(broken.err, "no-such-file.xml")) << broken.err;
+}
+
 TEST(maneuvermap_measure, bad_input_exits_2_with_a_message_that_says_what_was_wrong) {
   const temp_dir dir("measure_bad");
   write_file(dir / "broken.xml", "<commonRoad timeStepSize=\"0.1\" commonRoadVersion=\"2020a\">\n<lanelet id=\"1\">\n");

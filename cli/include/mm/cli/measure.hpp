@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <iosfwd>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -51,5 +52,18 @@ measure_outcome measure_recording(const commonroad::scenario& s, const std::stri
 /// One line per measured road user: its steps, its least room (max(MI−, MI+) at τ̄) and when, the
 /// steps at which the planner would not have kept to what it did, and its earliest TTC.
 std::string measurement_table(const measure_outcome& outcome);
+
+/// One file of `maneuvermap measure FILE FILE...`: its name (the file's stem) and what was measured.
+struct measured_file {
+  std::string name;
+  measure_outcome outcome;
+};
+
+/// measurements.csv of several measured files: the header
+/// `file,agent,steps,least_room,least_room_time_s,unsafe_steps,earliest_ttc_s,earliest_ttc_time_s`,
+/// then one row per measured road user, the files in the order given and each one's road users in
+/// the order measured; the values of each file's summary.json (the TTC columns empty when the road
+/// user was never on a collision course).
+std::string measurements_csv(std::span<const measured_file> files);
 
 }  // namespace mm::cli
