@@ -282,7 +282,10 @@ int measure_command(const measure_command_options& o) {
     try {
       measured.push_back({names[i], measure_file(o.files[i], names[i], settings, o.plots)});
     } catch (const mm::cli::input_error& e) {
-      throw mm::cli::input_error(o.files[i] + ": " + e.what());
+      // Ids name road users of one file: with several, only --agent all can choose for each.
+      const bool no_ego = !settings.every_road_user;
+      throw mm::cli::input_error(o.files[i] + ": " + e.what() +
+                                 (no_ego ? "; with several files, --agent all measures every road user of each" : ""));
     } catch (const mm::commonroad::measure_error& e) {
       throw mm::commonroad::measure_error(o.files[i] + ": " + e.what());
     }

@@ -108,6 +108,7 @@ TEST(maneuvermap_measure, several_files_go_each_into_a_folder_of_its_name_and_in
   const result no_ego = measure(pedestrian + " " + tutorial + " --out " + (dir / "egos").string(), dir);
   EXPECT_EQ(no_ego.code, 2);
   EXPECT_TRUE(contains(no_ego.err, "ZAM_Tutorial-1_2_T-1.xml: no obstacle of the file replays the ego")) << no_ego.err;
+  EXPECT_TRUE(contains(no_ego.err, "with several files, --agent all measures every road user of each")) << no_ego.err;
   EXPECT_TRUE(std::filesystem::is_regular_file(dir / "egos/OSC_PedestrianCollision-1_1_T-1/map.csv"));
   EXPECT_FALSE(std::filesystem::exists(dir / "egos/measurements.csv"));
 
