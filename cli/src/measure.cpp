@@ -10,7 +10,6 @@
 #include <mutex>
 #include <ostream>
 #include <nlohmann/json.hpp>
-#include <numbers>
 #include <thread>
 #include <utility>
 #include <vector>
