@@ -19,10 +19,8 @@ struct pipeline_options {
   double proof_resolution = 1e-4;  ///< [s] of the reference's continuous-time collision test
 };
 
-/// Clearances are clamped to ±this [m] in the fast path: far pairs are skipped, and it is far above
-/// how much the clearance changes between neighbouring samples (≈ 0.4 m), so the interpolated
-/// boundary is unaffected in practice.
-inline constexpr double clearance_cap = 2.0;
+/// The planner's clearance cap (`mm::planner_clearance_cap`).
+inline constexpr double clearance_cap = planner_clearance_cap;
 
 /// Smallest step of the continuous-time proof that a command is collision-free [s]: a command
 /// passing closer than the largest relative point speed times this is not proven safe (≈ 2–3 cm).

@@ -51,7 +51,7 @@ void time_fields(const mm::plan_input& input, const mm::plan_result& r, int coun
     std::size_t collisions = 0;
     const auto start = std::chrono::steady_clock::now();
     for (int i = 0; i < count; ++i) {
-      const mm::clearance_field field(sweep, obstacle, r.forecast_times, mm::capture::planner_clearance_cap, {},
+      const mm::clearance_field field(sweep, obstacle, r.forecast_times, mm::planner_clearance_cap, {},
                                       scratch);
       inert = field.inert();
       collisions = 0;

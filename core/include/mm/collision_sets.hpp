@@ -344,6 +344,11 @@ class ego_sweep {
   std::size_t grid_order_ = 0;
 };
 
+/// The cap [m] the planner clamps clearances to (`clearance_field`'s `cap`): far pairs are skipped,
+/// and it is far above how much the clearance changes between neighbouring samples (≈ 0.4 m), so
+/// the interpolated boundary is unaffected in practice.
+inline constexpr double planner_clearance_cap = 2.0;
+
 /// The collision sets of one obstacle for every forecast time, computed only as far as the
 /// indices need them (spec §5, §6).
 ///

@@ -33,9 +33,6 @@ interaction_count count_interactions(const plan_input& input);
 /// Smallest room max(MI−, MI+) over the forecast times of a plan.
 double smallest_room(const plan_result& result);
 
-/// The planner's clearance cap [m] (core/src/pipeline.hpp), for clearance fields built as it builds them.
-inline constexpr double planner_clearance_cap = 2.0;
-
 /// Calls `each(j, sweep, obstacle)` for every obstacle j that the plan `r` of `input` found
 /// relevant, with the ego's sweep as that plan built it (its sampled sets, collision window and
 /// forecast times) and the obstacle as it was forecast: what its clearance field is built from.
