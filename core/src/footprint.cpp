@@ -11,29 +11,14 @@
 namespace mm {
 namespace {
 
-struct interval {
-  double lo;
-  double hi;
-};
-
-interval project(const placed_footprint& f, vec2 axis) {
-  interval result{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  for (std::size_t i = 0; i < f.vertex_count; ++i) {
-    const double p = dot(f.vertices[i], axis);
-    result.lo = std::min(result.lo, p);
-    result.hi = std::max(result.hi, p);
-  }
-  return result;
-}
-
 /// True when some edge normal of `f` separates the cores of `f` and `g` (touching counts as separated).
 bool has_separating_edge(const placed_footprint& f, const placed_footprint& g) {
   if (f.vertex_count < 3) return false;
   for (std::size_t i = 0; i < f.vertex_count; ++i) {
     const vec2 edge = f.vertices[(i + 1) % f.vertex_count] - f.vertices[i];
     const vec2 axis{-edge.y, edge.x};
-    const interval pf = project(f, axis);
-    const interval pg = project(g, axis);
+    const core_extent pf = project(f, axis);
+    const core_extent pg = project(g, axis);
     if (pf.hi <= pg.lo || pg.hi <= pf.lo) return true;
   }
   return false;
@@ -61,13 +46,6 @@ bool cores_intersect(const placed_footprint& a, const placed_footprint& b) {
   if (a.vertex_count == 1) return strictly_inside(b, a.vertices[0]);
   if (b.vertex_count == 1) return strictly_inside(a, b.vertices[0]);
   return !has_separating_edge(a, b) && !has_separating_edge(b, a);
-}
-
-double squared_distance_to_segment(vec2 p, vec2 a, vec2 b) {
-  const vec2 ab = b - a;
-  const double len2 = squared_norm(ab);
-  const double t = len2 > 0.0 ? std::clamp(dot(p - a, ab) / len2, 0.0, 1.0) : 0.0;
-  return squared_norm(p - (a + t * ab));
 }
 
 /// Smallest squared distance from the vertices of `f` to the boundary of the core of `g`.
@@ -103,8 +81,8 @@ double core_penetration(const placed_footprint& a, const placed_footprint& b) {
       const double length = norm(edge);
       if (length == 0.0) continue;
       const vec2 axis{-edge.y / length, edge.x / length};
-      const interval pa = project(a, axis);
-      const interval pb = project(b, axis);
+      const core_extent pa = project(a, axis);
+      const core_extent pb = project(b, axis);
       depth = std::min(depth, std::min(pa.hi - pb.lo, pb.hi - pa.lo));
     }
   }
@@ -151,6 +129,16 @@ double polygon_width(const std::vector<vec2>& v) {
 }
 
 }  // namespace
+
+core_extent project(const placed_footprint& f, vec2 axis) {
+  core_extent result{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    const double p = dot(f.vertices[i], axis);
+    result.lo = std::min(result.lo, p);
+    result.hi = std::max(result.hi, p);
+  }
+  return result;
+}
 
 placed_footprint place(const footprint& shape, const pose& where) {
   return place(shape, where.position, {std::cos(where.heading), std::sin(where.heading)});

@@ -19,6 +19,7 @@
 #include "mm/assignment_search.hpp"
 #include "mm/collision_sets.hpp"
 #include "mm/maneuverability.hpp"
+#include "mm/road_constraint.hpp"
 #include "union_cells.hpp"
 
 namespace mm::detail {
@@ -97,6 +98,11 @@ class evaluator {
                  std::span<const std::uint8_t> wanted, clearance_field::raster_scratch& scratch) {
     fields_.emplace_back(sweep, obstacle, taus, clearance_cap, wanted, scratch);
   }
+  /// Fast path: the road constraint (spec §5), after every obstacle's field: one more part of every
+  /// combined set, the same under every forecast time.
+  void add_road(const ego_sweep& sweep, const drivable_area& area) { road_.emplace(sweep, area, clearance_cap); }
+  /// Reference: the road constraint as ±1 clearances (`road_clearances_reference`'s signs).
+  void add_road_reference(clearance_set set) { road_reference_ = std::move(set); }
 
   /// A buffer for a column that is not kept.
   clearance_set& scratch_column() { return scratch_set_; }
@@ -232,6 +238,7 @@ class evaluator {
       }
     }
     work.assignments_evaluated += assignments;
+    if (road_) work.bound_checks += road_->bound_checks();
   }
 
   sample_mask colliding(const clearance_set& c) const {
@@ -272,6 +279,9 @@ class evaluator {
         const clearance_set& part = reference_sets_[j][i];
         for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], part[m]);
       }
+      if (road_reference_) {
+        for (std::size_t m = 0; m < c.size(); ++m) c[m] = std::min(c[m], (*road_reference_)[m]);
+      }
       return;
     }
     // The signs of the sampled collisions, ±cap: the values come where the indices read them.
@@ -279,6 +289,7 @@ class evaluator {
     for (const auto& [j, i] : parts) {
       if (!fields_[j].inert()) negative_ |= fields_[j].collisions(i);
     }
+    if (road_ && road_->collides()) negative_ |= road_->collisions();
     positive_.assign_complement(negative_);
     union_indices_.reset();
     if (rough) return;  // the signs are all a rough room reads
@@ -287,6 +298,9 @@ class evaluator {
     for (const auto& part : parts) {
       if (!fields_[part.first].inert()) live_parts_.push_back(part);
     }
+    // The road is live where some sample leaves it (its values are its sampled minima: one without
+    // a sampled exit is positive everywhere, and changes no sign and no index).
+    if (road_ && road_->collides()) live_parts_.emplace_back(road_part(), 0);
     // Several obstacles: the indices now (their reads may make samples collide), the signs after.
     if (live_parts_.size() >= 2) union_indices_ = union_indices(live_parts_);
     c.assign(samples_.size(), clearance_cap);
@@ -303,15 +317,15 @@ class evaluator {
   maneuverability_pair union_indices(std::span<const std::pair<std::size_t, std::size_t>> live) {
     union_parts_.clear();
     for (const auto& [j, i] : live) {
-      if (fields_[j].collides(i)) union_parts_.emplace_back(j, i);
+      if (part_collides(j, i)) union_parts_.emplace_back(j, i);
     }
     const std::size_t count = union_parts_.size();
     union_spans_.clear();
     if (union_negative_.size() < count) union_negative_.resize(count);
     for (std::size_t p = 0; p < count; ++p) {
       const auto [j, i] = union_parts_[p];
-      union_spans_.push_back(fields_[j].set(i));
-      union_negative_[p] = fields_[j].collisions(i);
+      union_spans_.push_back(part_set(j, i));
+      union_negative_[p] = part_collisions(j, i);
     }
     for (bool flipped = true; flipped;) {
       flipped = false;
@@ -342,8 +356,8 @@ class evaluator {
     bool flipped = false;
     const auto make_exact = [&](std::size_t p, std::size_t m) {
       const auto [j, i] = union_parts_[p];
-      if (fields_[j].is_exact(i, m)) return;
-      if (!(fields_[j].exact(i, m) > 0.0) && !union_negative_[p].test(m)) {
+      if (part_is_exact(j, i, m)) return;
+      if (!(part_exact(j, i, m) > 0.0) && !union_negative_[p].test(m)) {
         flipped = true;
         union_negative_[p].set(m);
         negative_.set(m);
@@ -437,7 +451,7 @@ class evaluator {
       read_.subtract(valued_);
       valued_ |= read_;
       read_.for_each([&](std::size_t m) {
-        c[m] = fields_[j].exact(i, m);
+        c[m] = part_exact(j, i, m);
         if (positive_.test(m) && !(c[m] > 0.0)) {
           positive_.reset(m);
           --positives;
@@ -447,10 +461,31 @@ class evaluator {
     }
   }
 
+  /// The part index of the road constraint: one past the obstacles'.
+  std::size_t road_part() const { return fields_.size(); }
+  /// What the combination reads of part (j, i): obstacle j under forecast index i, or the road.
+  bool part_collides(std::size_t j, std::size_t i) const {
+    return j == road_part() ? road_->collides() : fields_[j].collides(i);
+  }
+  const sample_mask& part_collisions(std::size_t j, std::size_t i) const {
+    return j == road_part() ? road_->collisions() : fields_[j].collisions(i);
+  }
+  std::span<const double> part_set(std::size_t j, std::size_t i) const {
+    return j == road_part() ? road_->set() : fields_[j].set(i);
+  }
+  bool part_is_exact(std::size_t j, std::size_t i, std::size_t m) const {
+    return j == road_part() ? road_->is_exact(m) : fields_[j].is_exact(i, m);
+  }
+  double part_exact(std::size_t j, std::size_t i, std::size_t m) {
+    return j == road_part() ? road_->exact(m) : fields_[j].exact(i, m);
+  }
+
   const maneuver_samples& samples_;
   bool reference_;
   std::vector<std::vector<clearance_set>> reference_sets_;
   std::vector<clearance_field> fields_;  ///< reserved for every obstacle first (`reserve_fields`): never moved
+  std::optional<road_field> road_;       ///< fast path: the road constraint, when it binds
+  std::optional<clearance_set> road_reference_;  ///< reference: the road constraint's ±1, when it binds
   std::map<std::vector<std::size_t>, double> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
   std::map<std::array<std::size_t, 3>, double> rooms_alone_;  ///< `room_alone`, keyed by (j, i, rough)
   std::map<std::vector<std::size_t>, double> column_rooms_;  ///< the rooms of the map's column, keyed as `rooms_`
@@ -536,6 +571,20 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     }
     window.time_step = std::min(window.time_step, step);
   }
+  // The road constraint (spec §5) binds an ego that starts on the drivable area; its footprint must
+  // not pass over a boundary segment between two sample times.
+  const drivable_area* road =
+      in.drivable_area && starts_on_drivable_area(*in.drivable_area, ego) ? in.drivable_area.get() : nullptr;
+  result.on_drivable_area = road != nullptr;
+  if (road != nullptr) {
+    const double step = road_time_step(ego, window);
+    if (step < smallest_collision_time_step) {
+      return invalid("ego: the collision time step the road constraint needs (its smallest dimension over its top "
+                     "speed) is " + three_digits(step) + " s; expected at least " +
+                     three_digits(smallest_collision_time_step) + " s: a footprint and a speed of a road user");
+    }
+    window.time_step = std::min(window.time_step, step);
+  }
   window.time_step = std::min(window.time_step, config.collision_window);
   result.collision_time_step = window.time_step;
   // The tunneling bound can shorten the step below config.max_time_step: the pairs held stay bounded.
@@ -550,7 +599,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
                    "a coarser resolution, or road users that are larger or slower");
   }
 
-  if (n == 0 && !options.reference && !config.record_samples) {
+  if (n == 0 && road == nullptr && !options.reference && !config.record_samples) {
     // Nothing can reach the ego: every index is 1 and the nominal maneuver is safe (spec §9: far
     // obstacles cost nothing). The same result as the general path, without sampling anything.
     result.time_to_collision = no_collision;
@@ -645,7 +694,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // Clearances per obstacle and forecast time (spec §5).
   std::optional<ego_sweep> own_sweep;
   const ego_sweep* sweep = nullptr;
-  if (!options.reference && n > 0) {
+  if (!options.reference && (n > 0 || road != nullptr)) {
     if (!reuse) {
       sweep = &own_sweep.emplace(ego, samples, window);
     } else if (cache->sweep && cache->sweep->try_restart(ego, window)) {
@@ -668,6 +717,21 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       evaluate.add_field(*sweep, relevant[j], taus, wanted_of(j), raster);
     }
   }
+  if (road != nullptr) {
+    if (options.reference) {
+      clearance_set set = road_clearances_reference(*road, ego, samples.maneuvers, window, clearance_cap);
+      for (double& c : set) c = c > 0.0 ? 1.0 : -1.0;
+      evaluate.add_road_reference(std::move(set));
+    } else {
+      evaluate.add_road(*sweep, *road);
+    }
+  }
+  // A command must keep to the road over the whole of [0, T_h], not only at the sample times.
+  const auto on_road = [&](const maneuver& u) {
+    if (road == nullptr) return true;
+    return options.reference ? stays_on_drivable_area_reference(*road, ego, u, window, verification_resolution)
+                             : stays_on_drivable_area(*road, ego, u, window, verification_resolution);
+  };
 
   // The map column: every obstacle forecast with τ_i (spec §6). When no obstacle's clearances
   // depend on its forecast time (none turns, or those that do cannot come near), every τ_i gives
@@ -745,7 +809,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     const maneuverability_pair mi = evaluate.indices(every);
     const family robust_family = select_family(mi.brake, mi.accelerate);
     if (const auto decision = choose(robust_colliding, robust_family, [&](const maneuver& u) {
-          return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference);
+          return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference) &&
+                 on_road(u);
         })) {
       robust_decided = true;
       colliding = robust_colliding;
@@ -832,9 +897,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     std::vector<double> assigned_tau(n);
     for (std::size_t j = 0; j < n; ++j) assigned_tau[j] = taus[assignment[j]];
     if (const auto decision = choose(colliding, result.selected_family, [&](const maneuver& u) {
-          return options.reference
-                     ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
-                     : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution);
+          return (options.reference
+                      ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
+                      : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution)) &&
+                 on_road(u);
         })) {
       result.command = decision->command;
       result.mode = decision->mode;

@@ -49,6 +49,14 @@ struct placed_footprint {
   double half_width = 0.0;
 };
 
+/// The extent [lo, hi] of a placed footprint's core along `axis`: the smallest and largest
+/// dot(vertex, axis) [m when `axis` is a unit vector]. The radius is not included.
+struct core_extent {
+  double lo;
+  double hi;
+};
+core_extent project(const placed_footprint& f, vec2 axis);
+
 /// A rectangle placed in the world without its corner list: what the rectangle closed forms need.
 /// The corners are computed as `place` computes them, so every distance below equals the one of
 /// the corresponding `placed_footprint`s bit for bit.

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -24,6 +25,14 @@ constexpr double dot(vec2 a, vec2 b) { return a.x * b.x + a.y * b.y; }
 constexpr double cross(vec2 a, vec2 b) { return a.x * b.y - a.y * b.x; }
 constexpr double squared_norm(vec2 a) { return dot(a, a); }
 inline double norm(vec2 a) { return std::sqrt(a.x * a.x + a.y * a.y); }
+
+/// Squared distance [m²] from `p` to the segment from `a` to `b` (a point when a = b).
+inline double squared_distance_to_segment(vec2 p, vec2 a, vec2 b) {
+  const vec2 ab = b - a;
+  const double length2 = squared_norm(ab);
+  const double t = length2 > 0.0 ? std::clamp(dot(p - a, ab) / length2, 0.0, 1.0) : 0.0;
+  return squared_norm(p - (a + t * ab));
+}
 
 /// Unit vector of direction `angle` [rad], counter-clockwise from +x.
 inline vec2 unit_vector(double angle) { return {std::cos(angle), std::sin(angle)}; }

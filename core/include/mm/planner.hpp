@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "mm/drivable_area.hpp"
 #include "mm/forecast.hpp"
 #include "mm/maneuver.hpp"
 #include "mm/maneuver_choice.hpp"
@@ -21,6 +22,10 @@ struct plan_input {
   maneuver nominal;                       ///< u_nom: path following and speed keeping (spec §8); clamped to the limits
   std::vector<obstacle_track> obstacles;
   planner_config config;
+  /// The optional road constraint (spec §5): when set and the ego starts on it, a maneuver whose
+  /// footprint leaves this area within T_h is unsafe in both families (`road_constraint.hpp`).
+  /// Shared, as one area serves every vehicle and step of a scenario.
+  std::shared_ptr<const mm::drivable_area> drivable_area;
 };
 
 enum class plan_status : std::uint8_t { ok, invalid_input };
@@ -73,6 +78,9 @@ struct plan_result {
   /// τ̄ (each obstacle's forecast index) the largest of those forecast times. False under the other
   /// policies, and under the robust one when no maneuver was safe under all of them and ADJ decided.
   bool robust = false;
+  /// True when the input's drivable area constrained this step: given, and the ego started on it
+  /// (`starts_on_drivable_area`). Every index and the command then keep to the area within T_h.
+  bool on_drivable_area = false;
 
   /// The column of the Maneuverability Map at this time (spec §6): every obstacle forecast with τ_i.
   std::vector<double> forecast_times;

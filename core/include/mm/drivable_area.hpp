@@ -1,0 +1,74 @@
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "mm/footprint.hpp"
+#include "mm/geometry.hpp"
+
+namespace mm {
+
+/// A straight piece of a line, from `a` to `b` [m].
+struct segment {
+  vec2 a;
+  vec2 b;
+};
+
+/// Gaps and slivers of a drivable area narrower than this are closed [m]: two polygons whose edges
+/// lie closer than it are one road there (lanelets that share a bound up to rounding).
+inline constexpr double drivable_area_closing = 1e-3;
+
+/// Largest |coordinate| of a drivable area's vertex [m]: road networks of a few hundred kilometres,
+/// with the millimetre of `drivable_area_closing` well above the doubles' rounding there.
+inline constexpr double largest_drivable_coordinate = 1e7;
+
+/// Why `polygons` cannot be a drivable area, naming the polygon and vertex (`polygons[i]`,
+/// `polygons[i][j]`): none given, fewer than 3 vertices, a coordinate that is not finite or larger
+/// than `largest_drivable_coordinate`, or no area (all vertices on one line) — or nothing.
+std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons);
+
+/// The drivable area of spec §5: the union of simple polygons in the world frame [m] (either
+/// orientation; a self-intersecting polygon counts by the even-odd rule), and the boundary of that
+/// union as segments, computed once: the parts of the polygons' edges with the union on one side and
+/// not on the other (`drivable_area_closing` from the edge). Edges shared by neighbouring polygons,
+/// and the parts of an edge inside another polygon, are not boundary: lanelets that overlap at an
+/// intersection or share a bound make one road.
+///
+/// A footprint that starts inside the area leaves it exactly when it touches the boundary, which is
+/// what the planner tests (docs/method.md §5).
+class drivable_area {
+ public:
+  /// Throws std::invalid_argument with `drivable_area_error`'s message when `polygons` has one.
+  explicit drivable_area(std::vector<std::vector<vec2>> polygons);
+
+  const std::vector<std::vector<vec2>>& polygons() const { return polygons_; }
+  const std::vector<segment>& boundary() const { return boundary_; }
+
+  /// True when `p` lies in one of the polygons (even-odd rule; on an edge counts as either).
+  bool contains(vec2 p) const;
+
+ private:
+  struct box {
+    vec2 lo;
+    vec2 hi;
+  };
+  std::vector<std::vector<vec2>> polygons_;
+  std::vector<box> boxes_;
+  std::vector<segment> boundary_;
+};
+
+/// Signed distance [m] of a placed footprint to a segment: the gap when apart, minus the
+/// penetration depth (the shortest translation that separates them) when the segment cuts the
+/// footprint's core; the footprint's radius subtracted. Continuous, and no more than d apart for two
+/// placements whose points are no more than d apart.
+double signed_distance(const placed_footprint& f, const segment& s);
+
+/// Smallest signed distance of the footprint to the segments [m], `cap` when every segment is
+/// farther than it (`cap` > 0): positive when the footprint is clear of them, ≤ 0 when it touches
+/// or crosses one. min(cap, min over the segments of `signed_distance`), exactly: segments that
+/// cannot lower it are not asked.
+double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap);
+
+}  // namespace mm

@@ -1,0 +1,244 @@
+#include "mm/drivable_area.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+#include <utility>
+
+namespace mm {
+namespace {
+
+std::string number(double value) {
+  std::string text = std::to_string(value);
+  return text;
+}
+
+core_extent project_segment(const segment& s, vec2 axis) {
+  const double a = dot(s.a, axis);
+  const double b = dot(s.b, axis);
+  return {std::min(a, b), std::max(a, b)};
+}
+
+/// True when the segment meets the interior of the convex core (vertex_count ≥ 3): no edge normal
+/// of the core and not the segment's normal separates them (touching counts as separated).
+bool cuts_core(const placed_footprint& f, const segment& s) {
+  const auto separates = [&](vec2 axis) {
+    const core_extent pf = project(f, axis);
+    const core_extent ps = project_segment(s, axis);
+    return pf.hi <= ps.lo || ps.hi <= pf.lo;
+  };
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    const vec2 edge = f.vertices[(i + 1) % f.vertex_count] - f.vertices[i];
+    if (separates({-edge.y, edge.x})) return false;
+  }
+  const vec2 along = s.b - s.a;
+  return !separates({-along.y, along.x});
+}
+
+/// Penetration depth of a segment that cuts a convex core: the smallest overlap of the projections
+/// over the core's edge normals and the segment's normal (separating-axis theorem, exact for
+/// convex sets in the plane).
+double core_penetration(const placed_footprint& f, const segment& s) {
+  double depth = std::numeric_limits<double>::infinity();
+  const auto overlap = [&](vec2 edge) {
+    const double length = norm(edge);
+    if (length == 0.0) return;
+    const vec2 axis{-edge.y / length, edge.x / length};
+    const core_extent pf = project(f, axis);
+    const core_extent ps = project_segment(s, axis);
+    depth = std::min(depth, std::min(pf.hi - ps.lo, ps.hi - pf.lo));
+  };
+  for (std::size_t i = 0; i < f.vertex_count; ++i) overlap(f.vertices[(i + 1) % f.vertex_count] - f.vertices[i]);
+  overlap(s.b - s.a);
+  return depth;
+}
+
+/// Distance of a segment to a core it does not cut: the nearest of the segment's ends to the core's
+/// edges and of the core's vertices to the segment.
+double separated_distance(const placed_footprint& f, const segment& s) {
+  double best = std::numeric_limits<double>::infinity();
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    best = std::min(best, squared_distance_to_segment(f.vertices[i], s.a, s.b));
+    if (f.vertex_count >= 2) {
+      const vec2 a = f.vertices[i];
+      const vec2 b = f.vertices[(i + 1) % f.vertex_count];
+      best = std::min(best, squared_distance_to_segment(s.a, a, b));
+      best = std::min(best, squared_distance_to_segment(s.b, a, b));
+    }
+  }
+  return std::sqrt(best);
+}
+
+/// Crossing-number test of `p` in a polygon (even-odd rule).
+bool inside_polygon(const std::vector<vec2>& polygon, vec2 p) {
+  bool inside = false;
+  const std::size_t n = polygon.size();
+  for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+    const vec2 a = polygon[i];
+    const vec2 b = polygon[j];
+    if ((a.y > p.y) != (b.y > p.y)) {
+      const double x = a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y);
+      if (p.x < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+}  // namespace
+
+std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons) {
+  if (polygons.empty()) return "no polygon; expected at least one polygon of at least 3 vertices";
+  for (std::size_t i = 0; i < polygons.size(); ++i) {
+    const std::vector<vec2>& p = polygons[i];
+    const std::string name = "polygons[" + std::to_string(i) + "]";
+    if (p.size() < 3) {
+      return name + " has " + std::to_string(p.size()) + " vertices; expected at least 3";
+    }
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      for (const double c : {p[j].x, p[j].y}) {
+        if (!std::isfinite(c) || std::abs(c) > largest_drivable_coordinate) {
+          return name + "[" + std::to_string(j) + "] = (" + number(p[j].x) + ", " + number(p[j].y) +
+                 "); expected finite coordinates of at most 1e7 m in magnitude";
+        }
+      }
+    }
+    // Twice the largest triangle area from the first vertex, against the polygon's size: zero when
+    // every vertex lies on one line.
+    double extent = 0.0;
+    double largest = 0.0;
+    for (std::size_t j = 1; j < p.size(); ++j) {
+      extent = std::max(extent, norm(p[j] - p[0]));
+      for (std::size_t k = j + 1; k < p.size(); ++k) {
+        largest = std::max(largest, std::abs(cross(p[j] - p[0], p[k] - p[0])));
+      }
+    }
+    if (!(largest > 1e-12 * extent * extent) || extent == 0.0) {
+      return name + " has no area (its " + std::to_string(p.size()) +
+             " vertices lie on one line); expected a polygon enclosing part of the road";
+    }
+  }
+  return std::nullopt;
+}
+
+drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons) : polygons_(std::move(polygons)) {
+  if (auto error = drivable_area_error(polygons_)) throw std::invalid_argument("drivable area: " + *error);
+  boxes_.reserve(polygons_.size());
+  for (const std::vector<vec2>& p : polygons_) {
+    box b{p.front(), p.front()};
+    for (const vec2 v : p) {
+      b.lo = {std::min(b.lo.x, v.x), std::min(b.lo.y, v.y)};
+      b.hi = {std::max(b.hi.x, v.x), std::max(b.hi.y, v.y)};
+    }
+    boxes_.push_back(b);
+  }
+
+  // Every edge, with its box widened by the closing distance.
+  struct edge {
+    segment s;
+    box b;
+  };
+  std::vector<edge> edges;
+  for (const std::vector<vec2>& p : polygons_) {
+    for (std::size_t j = 0; j < p.size(); ++j) {
+      const segment s{p[j], p[(j + 1) % p.size()]};
+      if (s.a == s.b) continue;
+      const double w = drivable_area_closing;
+      edges.push_back({s,
+                       {{std::min(s.a.x, s.b.x) - w, std::min(s.a.y, s.b.y) - w},
+                        {std::max(s.a.x, s.b.x) + w, std::max(s.a.y, s.b.y) + w}}});
+    }
+  }
+  // By the left end of their boxes, so that each edge meets only those that can reach it.
+  std::vector<std::size_t> order(edges.size());
+  for (std::size_t e = 0; e < order.size(); ++e) order[e] = e;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return edges[a].b.lo.x < edges[b].b.lo.x; });
+  double widest = 0.0;
+  for (const edge& e : edges) widest = std::max(widest, e.b.hi.x - e.b.lo.x);
+
+  std::vector<double> cuts;
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const segment& s = edges[e].s;
+    const vec2 along = s.b - s.a;
+    const double length = norm(along);
+    const vec2 unit = (1.0 / length) * along;
+    const vec2 left{-unit.y, unit.x};
+    // Where the edge may change between boundary and not: where another edge crosses it, and where
+    // another edge's end comes within the closing distance of it.
+    cuts.assign({0.0, 1.0});
+    const auto cut_at = [&](double t) {
+      if (t > 0.0 && t < 1.0) cuts.push_back(t);
+    };
+    const auto first = std::lower_bound(order.begin(), order.end(), edges[e].b.lo.x - widest,
+                                        [&](std::size_t o, double x) { return edges[o].b.lo.x < x; });
+    for (auto it = first; it != order.end() && edges[*it].b.lo.x <= edges[e].b.hi.x; ++it) {
+      if (*it == e) continue;
+      const edge& g = edges[*it];
+      if (g.b.lo.y > edges[e].b.hi.y || g.b.hi.y < edges[e].b.lo.y || g.b.hi.x < edges[e].b.lo.x) continue;
+      for (const vec2 end : {g.s.a, g.s.b}) {
+        if (std::abs(dot(end - s.a, left)) <= drivable_area_closing) cut_at(dot(end - s.a, unit) / length);
+      }
+      const vec2 other = g.s.b - g.s.a;
+      const double denominator = cross(along, other);
+      if (denominator != 0.0) {
+        const double t = cross(g.s.a - s.a, other) / denominator;
+        const double u = cross(g.s.a - s.a, along) / denominator;
+        if (u >= 0.0 && u <= 1.0) cut_at(t);
+      }
+    }
+    std::sort(cuts.begin(), cuts.end());
+    // A piece is boundary when the union lies on one side of it and not on the other.
+    std::size_t open = boundary_.size();
+    for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+      if ((cuts[c + 1] - cuts[c]) * length <= 1e-9) continue;
+      const vec2 middle = s.a + (0.5 * (cuts[c] + cuts[c + 1])) * along;
+      const bool on_left = contains(middle + drivable_area_closing * left);
+      const bool on_right = contains(middle - drivable_area_closing * left);
+      if (on_left == on_right) continue;
+      const vec2 from = s.a + cuts[c] * along;
+      const vec2 to = s.a + cuts[c + 1] * along;
+      // Consecutive boundary pieces of one edge are one segment.
+      if (boundary_.size() > open && boundary_.back().b == from) {
+        boundary_.back().b = to;
+      } else {
+        boundary_.push_back({from, to});
+      }
+      open = boundary_.size() - 1;
+    }
+  }
+}
+
+bool drivable_area::contains(vec2 p) const {
+  for (std::size_t i = 0; i < polygons_.size(); ++i) {
+    const box& b = boxes_[i];
+    if (p.x < b.lo.x || p.x > b.hi.x || p.y < b.lo.y || p.y > b.hi.y) continue;
+    if (inside_polygon(polygons_[i], p)) return true;
+  }
+  return false;
+}
+
+double signed_distance(const placed_footprint& f, const segment& s) {
+  if (f.vertex_count >= 3 && cuts_core(f, s)) return -core_penetration(f, s) - f.radius;
+  return separated_distance(f, s) - f.radius;
+}
+
+double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap) {
+  // A disc about the core's vertex mean that holds the footprint: a segment farther than the best so
+  // far from it cannot lower the minimum, which is then the same as over every segment.
+  vec2 centre;
+  for (std::size_t i = 0; i < f.vertex_count; ++i) centre = centre + f.vertices[i];
+  centre = (1.0 / static_cast<double>(f.vertex_count)) * centre;
+  double radius = 0.0;
+  for (std::size_t i = 0; i < f.vertex_count; ++i) radius = std::max(radius, norm(f.vertices[i] - centre));
+  radius = radius + f.radius;
+  double best = cap;
+  for (const segment& s : boundary) {
+    const double far = std::sqrt(squared_distance_to_segment(centre, s.a, s.b)) - radius;
+    if (far > best + 1e-9 * (1.0 + std::abs(best))) continue;
+    best = std::min(best, signed_distance(f, s));
+  }
+  return best;
+}
+
+}  // namespace mm

@@ -1,0 +1,115 @@
+#include "mm/drivable_area.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <stdexcept>
+
+namespace mm {
+namespace {
+
+/// The rectangle [x0, x1] × [y0, y1], counter-clockwise.
+std::vector<vec2> box(double x0, double y0, double x1, double y1) { return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}; }
+
+double total_length(const std::vector<segment>& segments) {
+  double length = 0.0;
+  for (const segment& s : segments) length += norm(s.b - s.a);
+  return length;
+}
+
+/// True when the union lies on exactly one side of the segment's middle.
+bool separates_inside_from_outside(const drivable_area& area, const segment& s) {
+  const vec2 along = s.b - s.a;
+  const vec2 left = (1.0 / norm(along)) * vec2{-along.y, along.x};
+  const vec2 middle = s.a + 0.5 * along;
+  return area.contains(middle + 0.01 * left) != area.contains(middle - 0.01 * left);
+}
+
+TEST(drivable_area, two_crossing_roads_are_bounded_by_their_union_not_by_the_edges_inside_each_other) {
+  // Two 3.5 m roads, 40 m long, crossing at the origin: a cross whose perimeter is the two
+  // rectangles' less the four 3.5 m pieces of their long edges that lie inside the other road.
+  const drivable_area area({box(-20.0, -1.75, 20.0, 1.75), box(-1.75, -20.0, 1.75, 20.0)});
+  EXPECT_NEAR(total_length(area.boundary()), 2.0 * 2.0 * (40.0 + 3.5) - 4.0 * 3.5, 1e-9);
+  for (const segment& s : area.boundary()) EXPECT_TRUE(separates_inside_from_outside(area, s));
+  // Twelve corners: twelve segments (the pieces of one edge on either side of the crossing are two).
+  EXPECT_EQ(area.boundary().size(), 12U);
+  EXPECT_TRUE(area.contains({0.0, 0.0}));
+  EXPECT_TRUE(area.contains({15.0, 1.0}));
+  EXPECT_FALSE(area.contains({5.0, 5.0}));
+}
+
+TEST(drivable_area, neighbouring_lanes_that_share_a_bound_make_one_road_without_an_edge_between_them) {
+  // Two lanes, the second given clockwise, sharing y = 0; and a third lane whose shared bound is
+  // 0.5 mm off (rounding between lanelets): closed too.
+  const drivable_area two({box(0.0, -3.5, 100.0, 0.0), {{0.0, 0.0}, {0.0, 3.5}, {100.0, 3.5}, {100.0, 0.0}}});
+  EXPECT_NEAR(total_length(two.boundary()), 2.0 * (100.0 + 7.0), 1e-9);
+  for (const segment& s : two.boundary()) {
+    EXPECT_FALSE(std::abs(s.a.y) < 1e-9 && std::abs(s.b.y) < 1e-9) << "no boundary along the shared bound";
+  }
+  const drivable_area near({box(0.0, -3.5, 100.0, 0.0), box(0.0, 0.0005, 100.0, 3.5)});
+  // Its boundary: the outer long edges, and the lanes' ends (the 0.5 mm between them is no edge).
+  EXPECT_NEAR(total_length(near.boundary()), 2.0 * 100.0 + 2.0 * (7.0 - 0.0005), 1e-9) << "the 0.5 mm gap is closed";
+  // A 5 cm gap is not a road: both of its sides are boundary.
+  const drivable_area apart({box(0.0, -3.5, 100.0, 0.0), box(0.0, 0.05, 100.0, 3.55)});
+  EXPECT_NEAR(total_length(apart.boundary()), 2.0 * 2.0 * (100.0 + 3.5), 1e-9);
+}
+
+TEST(drivable_area, a_road_with_a_branch_keeps_the_edge_pieces_beside_the_branch) {
+  // A T: the main road's north edge is boundary left and right of the branch, not where it joins.
+  const drivable_area area({box(-50.0, -3.5, 50.0, 3.5), box(-3.0, 0.0, 3.0, 40.0)});
+  double on_north_edge = 0.0;
+  for (const segment& s : area.boundary()) {
+    if (std::abs(s.a.y - 3.5) < 1e-12 && std::abs(s.b.y - 3.5) < 1e-12) on_north_edge += std::abs(s.b.x - s.a.x);
+  }
+  EXPECT_NEAR(on_north_edge, 100.0 - 6.0, 1e-9);
+  for (const segment& s : area.boundary()) EXPECT_TRUE(separates_inside_from_outside(area, s));
+}
+
+TEST(drivable_area, bad_polygons_are_refused_with_the_polygon_the_vertex_and_what_was_expected) {
+  EXPECT_NE(drivable_area_error({})->find("no polygon"), std::string::npos);
+  EXPECT_NE(drivable_area_error({box(0, 0, 1, 1), {{0.0, 0.0}, {1.0, 0.0}}})->find("polygons[1] has 2 vertices"),
+            std::string::npos);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto not_finite = drivable_area_error({{{0.0, 0.0}, {1.0, 0.0}, {1.0, nan}}});
+  ASSERT_TRUE(not_finite);
+  EXPECT_NE(not_finite->find("polygons[0][2]"), std::string::npos) << *not_finite;
+  EXPECT_NE(not_finite->find("expected finite coordinates"), std::string::npos) << *not_finite;
+  const auto flat = drivable_area_error({{{0.0, 0.0}, {1.0, 1.0}, {2.0, 2.0}}});
+  ASSERT_TRUE(flat);
+  EXPECT_NE(flat->find("polygons[0] has no area"), std::string::npos) << *flat;
+  EXPECT_FALSE(drivable_area_error({box(0, 0, 1, 1)}));
+  EXPECT_THROW(drivable_area({}), std::invalid_argument);
+}
+
+TEST(drivable_area, a_footprint_s_signed_distance_to_a_segment_is_its_gap_or_minus_its_penetration) {
+  const placed_footprint car = place(rectangle{4.5, 1.8}, {{0.0, 0.0}, 0.0});
+  // A kerb line along y = 1.5 m: 0.6 m clear of the car's left side at y = 0.9 m.
+  EXPECT_NEAR(signed_distance(car, segment{{-10.0, 1.5}, {10.0, 1.5}}), 0.6, 1e-12);
+  // Along y = 0.5: it cuts the car, which must move 0.4 m to the right (or 1.4 m left) to clear it.
+  EXPECT_NEAR(signed_distance(car, segment{{-10.0, 0.5}, {10.0, 0.5}}), -0.4, 1e-12);
+  // A short segment ahead, end-on: the gap from the car's front (x = 2.25) to its end.
+  EXPECT_NEAR(signed_distance(car, segment{{3.0, 0.0}, {8.0, 0.0}}), 0.75, 1e-12);
+  // The same segment poking 0.25 m into the front: the shortest way out is back along it.
+  EXPECT_NEAR(signed_distance(car, segment{{2.0, 0.0}, {8.0, 0.0}}), -0.25, 1e-12);
+  // Past a corner: the distance to the corner.
+  EXPECT_NEAR(signed_distance(car, segment{{3.25, 1.9}, {3.25, 5.0}}), std::hypot(1.0, 1.0), 1e-12);
+  // A disc of 0.35 m: its centre's distance less the radius, negative when the line runs through it.
+  const placed_footprint walker = place(disc{0.35}, {{0.0, 0.0}, 0.0});
+  EXPECT_NEAR(signed_distance(walker, segment{{-1.0, 1.0}, {1.0, 1.0}}), 0.65, 1e-12);
+  EXPECT_NEAR(signed_distance(walker, segment{{-1.0, 0.1}, {1.0, 0.1}}), -0.25, 1e-12);
+}
+
+TEST(drivable_area, the_boundary_clearance_is_the_nearest_segment_s_and_capped) {
+  const drivable_area road({box(-100.0, -1.75, 100.0, 1.75)});
+  const placed_footprint car = place(rectangle{4.5, 1.8}, {{0.0, 0.5}, 0.0});
+  // The north edge is 1.75 − 1.4 = 0.35 m from the car's left side, the south edge 1.75 + 0.5 − 0.9.
+  EXPECT_NEAR(boundary_clearance(road.boundary(), car, 2.0), 0.35, 1e-12);
+  EXPECT_EQ(boundary_clearance(road.boundary(), car, 0.2), 0.2) << "capped";
+  const placed_footprint across = place(rectangle{4.5, 1.8}, {{0.0, 0.0}, std::numbers::pi / 2.0});
+  EXPECT_LT(boundary_clearance(road.boundary(), across, 2.0), 0.0) << "a car across a 3.5 m road crosses its edges";
+}
+
+}  // namespace
+}  // namespace mm
