@@ -14,6 +14,7 @@
 #include <map>
 #include <sstream>
 
+#include "mm/drivable_area.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/sim/meeting.hpp"
 #include "reader.hpp"
@@ -34,6 +35,35 @@ scenario_error::scenario_error(std::string source, int line, int column, std::st
       column_(column),
       field_(std::move(field)),
       problem_(std::move(problem)) {}
+
+std::vector<std::vector<vec2>> road_polygons(const road& r) {
+  std::vector<std::vector<vec2>> polygons;
+  const double half = 0.5 * r.width;
+  const auto left_of = [](vec2 a, vec2 b) {
+    const vec2 d = b - a;
+    const double length = norm(d);
+    return vec2{-d.y / length, d.x / length};
+  };
+  std::size_t previous = r.centre_line.size();  // the last point a piece ended at, none yet
+  for (std::size_t i = 0; i + 1 < r.centre_line.size(); ++i) {
+    const vec2 a = r.centre_line[i];
+    const vec2 b = r.centre_line[i + 1];
+    if (a == b) continue;
+    const vec2 n = half * left_of(a, b);
+    polygons.push_back({a - n, b - n, b + n, a + n});
+    if (previous < r.centre_line.size()) {
+      const vec2 p = r.centre_line[previous];
+      const vec2 m = half * left_of(p, a);
+      // The outer side of the bend at a: right of a left turn, left of a right turn.
+      // A bend of under a microradian leaves a gap of microns, which the area closes anyway.
+      const double turn = cross(a - p, b - a) / (norm(a - p) * norm(b - a));
+      if (turn > 1e-6) polygons.push_back({a, a - m, a - n});
+      if (turn < -1e-6) polygons.push_back({a, a + n, a + m});
+    }
+    previous = i;
+  }
+  return polygons;
+}
 
 namespace {
 
@@ -57,7 +87,7 @@ std::vector<std::string> without(std::vector<std::string> keys, std::initializer
 
 const std::vector<std::string> top_keys{"format",     "name",          "description", "parameters", "duration_s",
                                         "time_step_s", "seed",         "sensing_noise", "roundabout", "roads",
-                                        "defaults",   "agents",        "meet"};
+                                        "drivable_area", "defaults",   "agents",        "meet"};
 const std::vector<std::string> common_agent_keys{"name", "kind", "path", "start_arc_length_m", "start_time_s", "before_start"};
 const std::vector<std::string> planning_keys = concat(
     common_agent_keys,
@@ -105,6 +135,7 @@ class mapper {
     if (top.has("sensing_noise")) read_noise(top.child("sensing_noise"));
     if (auto r = top.get("roundabout")) read_roundabout(*r);
     if (auto r = top.get("roads")) read_roads(*r);
+    if (top.has("drivable_area")) read_drivable_area(top.child("drivable_area"));
     read_defaults(top);
     read_agents(top.require("agents"));
     if (auto m = top.get("meet")) read_meetings(*m);
@@ -217,6 +248,34 @@ class mapper {
       out.centre_line = read_points(ctx_, r.require("centre_line_m"), 2, 10000);
       out.width = r.quantity_or("width", {metres}, 7.0, range::positive);
       result_.roads.push_back(std::move(out));
+    }
+  }
+
+  /// `drivable_area:` (spec §5's road constraint): the file's roads, each as wide as its width, and
+  /// further polygons, into `scenario::drivable_area`.
+  void read_drivable_area(const map_view& area) {
+    area.allow({"roads", "polygons_m"});
+    std::vector<std::vector<vec2>>& polygons = result_.scenario.drivable_area;
+    if (auto r = area.get("roads"); r && read_bool(ctx_, *r)) {
+      if (result_.roads.empty()) {
+        fail_value(ctx_, *r, "false, or roads: in the file (the drivable area is made of the roads it lists)");
+      }
+      for (const road& each : result_.roads) {
+        for (std::vector<vec2>& p : road_polygons(each)) polygons.push_back(std::move(p));
+      }
+    }
+    if (auto p = area.get("polygons_m")) {
+      for (const field& item : read_list(ctx_, *p)) {
+        std::vector<vec2> polygon = read_points(ctx_, item, 3, 100000);
+        std::vector<std::vector<vec2>> alone{polygon};
+        if (auto why = mm::drivable_area_error(alone)) {
+          fail_value(ctx_, item, "a polygon of at least 3 vertices not all on one line (" + *why + ")");
+        }
+        polygons.push_back(std::move(polygon));
+      }
+    }
+    if (polygons.empty()) {
+      fail_value(ctx_, area.self(), "roads: true (with roads: in the file) or polygons_m: a list of polygons");
     }
   }
 

@@ -5,6 +5,7 @@
 #include <set>
 #include <string_view>
 
+#include "mm/drivable_area.hpp"
 #include "mm/planner.hpp"
 
 namespace mm::sim {
@@ -186,6 +187,10 @@ std::optional<std::string> validation_error(const scenario& s) {
     }
     if (c.error) break;
     if (auto why = mm::footprint_error(static_footprint(o))) c.fail("vertices", ": " + *why);
+  }
+  if (!c.error && !s.drivable_area.empty()) {
+    c.where = "scenario";
+    if (auto why = mm::drivable_area_error(s.drivable_area)) c.fail("drivable_area", ": " + *why);
   }
   return c.error;
 }

@@ -175,6 +175,7 @@ struct simulation::impl {
 
   struct scenario sc;
   run_options options;
+  std::shared_ptr<const mm::drivable_area> area;  ///< of `sc.drivable_area`, built once; null without one
   std::vector<agent_info> infos;
   std::vector<agent_state> states;
   std::vector<double> radii;                       ///< bounding radius of each footprint [m]
@@ -206,6 +207,7 @@ struct simulation::impl {
 
   impl(struct scenario s, run_options run) : sc(std::move(s)), options(run) {
     if (auto error = validation_error(sc)) throw std::invalid_argument(*error);
+    if (!sc.drivable_area.empty()) area = std::make_shared<const mm::drivable_area>(sc.drivable_area);
     last_step = static_cast<std::size_t>(std::ceil(sc.duration / sc.time_step - 1e-9));
     for (const planning_vehicle& v : sc.planning_vehicles) add(v.name, agent_kind::planning_vehicle, v.shape, nullptr);
     for (const scripted_vehicle& v : sc.scripted_vehicles) {
@@ -511,6 +513,7 @@ struct simulation::impl {
     input.nominal = nominal;
     input.config = spec.planner;
     if (!options.map_columns) input.config.map_column = false;
+    input.drivable_area = area;
     const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
     std::size_t count = 0;
     const bool shared = exact_sensing && !v.frozen;

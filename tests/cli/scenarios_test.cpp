@@ -251,6 +251,26 @@ TEST(example_scenarios, kerbs_along_the_roads_keep_a_in_its_lane_where_s1_swerve
   EXPECT_DOUBLE_EQ(first_room(open), 1.0);
 }
 
+TEST(example_scenarios, on_the_road_a_swerves_round_b_only_within_its_lane) {
+  // examples/scenarios/s1-crossing-road.yaml: S1 with the road constraint of spec §5, the drivable
+  // area the union of its two 3.5 m roads. Measured on 2026-12-05: A swerves 0.62 m (1.04 m in S1,
+  // where its footprint leaves the road) and passes B as close (0.319 m).
+  const finished_run road = run_builtin(MM_SOURCE_DIR "/examples/scenarios/s1-crossing-road.yaml", "s1_road");
+  const finished_run open = run_builtin("s1-crossing", "s1_open_road");
+  const mm::sim::run_metrics& r = road.outcome.metrics.at(0);
+  const mm::sim::run_metrics& o = open.outcome.metrics.at(0);
+  EXPECT_FALSE(r.crash);
+  EXPECT_GT(*r.min_dist_m, 0.15);
+  // Half the road less half the car: 0.85 m; a heading off the road's adds to the footprint's reach.
+  EXPECT_LT(r.max_lateral_offset_m, 0.85);
+  EXPECT_GT(r.max_lateral_offset_m, 0.3) << "the lane's width is room to swerve";
+  EXPECT_GT(o.max_lateral_offset_m, 0.95) << "without the road A leaves it";
+  // Before B appears the road takes the steering maneuvers that leave it within 1 s, not more.
+  EXPECT_LT(first_room(road), 1.0);
+  EXPECT_GT(first_room(road), 0.3);
+  EXPECT_DOUBLE_EQ(first_room(open), 1.0);
+}
+
 // --- output files ------------------------------------------------------------------------------
 
 TEST(cli_outputs, the_same_scenario_parameters_and_seed_give_byte_identical_files) {

@@ -6,6 +6,7 @@
 #include <numbers>
 #include <string>
 
+#include "mm/drivable_area.hpp"
 #include "mm/scenario_file/builtin.hpp"
 
 namespace {
@@ -195,6 +196,38 @@ TEST(scenario_file, every_field_is_mapped_onto_the_simulator_in_si_units) {
   EXPECT_DOUBLE_EQ(l.roads[0].width, 7.0);
   ASSERT_EQ(l.parameters.size(), 3U);
   EXPECT_EQ(l.parameters[1].name, "gap_m");
+}
+
+TEST(scenario_file, the_drivable_area_is_the_roads_with_their_bends_closed_and_the_polygons_given) {
+  const std::string text = R"(format: maneuvermap-scenario/1
+name: on-the-road
+roads:
+  - {centre_line_m: [[0, 0], [50, 0], [50, 50]], width_m: 4}
+drivable_area:
+  roads: true
+  polygons_m:
+    - [[-10, -10], [0, -10], [0, 10]]
+agents:
+  - {name: A, kind: planning_vehicle, desired_speed_kmh: 30,
+     path: {start: {position_m: [1, 0], heading_deg: 0}, segments: [{straight_m: 40}]}}
+)";
+  const loaded_scenario l = load_text(text, "road.yaml");
+  const std::vector<std::vector<mm::vec2>>& area = l.scenario.drivable_area;
+  // Two 4 m wide rectangles, the triangle that closes the outside of the left bend at (50, 0), the
+  // polygon given.
+  ASSERT_EQ(area.size(), 4U);
+  EXPECT_EQ(area[0], (std::vector<mm::vec2>{{0, -2}, {50, -2}, {50, 2}, {0, 2}}));
+  EXPECT_EQ(area[1], (std::vector<mm::vec2>{{52, 0}, {52, 50}, {48, 50}, {48, 0}}));
+  EXPECT_EQ(area[2], (std::vector<mm::vec2>{{50, 0}, {50, -2}, {52, 0}}));
+  EXPECT_EQ(area[3], (std::vector<mm::vec2>{{-10, -10}, {0, -10}, {0, 10}}));
+  // Their union is the road: its outer corner at the bend is bevelled, the inside is whole.
+  const mm::drivable_area road(area);
+  EXPECT_TRUE(road.contains({51.9, -0.05}));
+  EXPECT_TRUE(road.contains({50.9, -0.9}));
+  EXPECT_FALSE(road.contains({51.9, -1.9}));
+  EXPECT_TRUE(road.contains({49.0, 1.0}));
+  // Without drivable_area: none.
+  EXPECT_TRUE(load_text(full, "full.yaml").scenario.drivable_area.empty());
 }
 
 TEST(scenario_file, parameters_take_their_defaults_and_command_line_overrides_replace_them) {

@@ -66,6 +66,11 @@ struct road {
   double width = 0.0;             ///< [m]
 };
 
+/// The area a road covers, as polygons whose union it is: a rectangle `width` wide about each piece
+/// of the centre line, and at each bend the triangle that closes the outer side between two pieces
+/// (a bevelled joint). What `drivable_area: {roads: true}` makes of the file's roads.
+std::vector<std::vector<vec2>> road_polygons(const road& r);
+
 /// How a `meet:` entry timed two agents (travel at constant initial speed to the conflict point).
 struct meeting_report {
   std::string first;

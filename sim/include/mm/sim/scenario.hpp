@@ -95,6 +95,10 @@ struct scenario {
   std::vector<scripted_vehicle> scripted_vehicles;
   std::vector<pedestrian> pedestrians;
   std::vector<static_obstacle> static_obstacles;
+  /// The drivable area (spec §5's optional road constraint): the union of these polygons, world
+  /// frame [m] (`mm::drivable_area`). Every planning vehicle that starts a step on it keeps its
+  /// maneuvers on it within T_h. Empty: no road constraint.
+  std::vector<std::vector<vec2>> drivable_area;
 };
 
 /// The first problem of `s`, naming the agent and the field, e.g.
