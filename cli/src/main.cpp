@@ -209,6 +209,7 @@ struct measure_command_options {
   std::string policy;
   std::string out;
   bool plots = false;
+  bool on_lanelets = false;
   std::size_t jobs = 0;
 };
 
@@ -256,6 +257,7 @@ int measure_command(const measure_command_options& o) {
   parse_agents(o.agents, settings);
   if (!o.policy.empty()) settings.policy = policy_option(o.policy);
   settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
+  settings.on_lanelets = o.on_lanelets;
   settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
   std::vector<std::string> names;
   for (const std::string& file : o.files) {
@@ -306,6 +308,7 @@ struct replay_command_options {
   std::string policy;
   std::optional<double> desired_speed_kmh;
   bool no_avoidance = false;
+  bool on_lanelets = false;
   std::string out;
   bool plots = false;
 };
@@ -317,6 +320,7 @@ int replay_command(const replay_command_options& o) {
   if (!o.policy.empty()) options.config.policy = policy_option(o.policy);
   if (o.desired_speed_kmh) options.desired_speed = *o.desired_speed_kmh / 3.6;
   options.avoidance = !o.no_avoidance;
+  options.on_lanelets = o.on_lanelets;
   const sf::loaded_scenario loaded = mm::cli::replay_loaded(recording, options, o.file);
   const std::string name = std::filesystem::path(o.file).stem().string();
   mm::cli::run_settings settings;
@@ -421,6 +425,9 @@ int main(int argc, char** argv) {
                       "Road users measured at a time (outputs do not depend on it; default: the number of cores)")
       ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
       ->type_name("N");
+  measure->add_flag("--on-lanelets", measure_options.on_lanelets,
+                    "Count only the room on the road: a maneuver whose footprint leaves the union of the file's "
+                    "lanelets within T_h is unsafe (the road constraint of spec §5)");
   measure->add_flag("--plots", measure_options.plots, "Then draw the figures into the output directory (maneuvermap plot)");
 
   replay_command_options replay_options;
@@ -442,6 +449,9 @@ int main(int argc, char** argv) {
       ->type_name("KMH");
   replay->add_flag("--no-avoidance", replay_options.no_avoidance,
                    "Follow the recorded path without planning (the baseline)");
+  replay->add_flag("--on-lanelets", replay_options.on_lanelets,
+                   "Keep the planned road user on the union of the file's lanelets within T_h (the road constraint of "
+                   "spec §5)");
   replay->add_option("--out", replay_options.out, "Output directory (default out/<file name>-replay)")
       ->type_name("DIR");
   replay->add_flag("--plots", replay_options.plots, "Then draw the run's figures into its output directory");

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <exception>
 #include <limits>
+#include <memory>
 #include <mutex>
+#include <stdexcept>
 #include <ostream>
 #include <nlohmann/json.hpp>
 #include <thread>
@@ -16,6 +18,7 @@
 
 #include "output_files.hpp"
 #include "mm/cli/commands.hpp"
+#include "mm/drivable_area.hpp"
 #include "mm/scenario_file/loader.hpp"
 
 namespace mm::cli {
@@ -113,8 +116,11 @@ json summary_json(const cr::scenario& s, const std::string& name, const measure_
   json vehicles = json::array();
   for (const cr::measurement& m : outcome.measurements) {
     const measurement_summary sum = summarize(m);
+    const auto on_road = std::count_if(m.steps.begin(), m.steps.end(),
+                                       [](const cr::measured_step& step) { return step.result.on_drivable_area; });
     vehicles.push_back({{"agent", name_of(m.agent)},
                         {"steps", sum.steps},
+                        {"steps_on_drivable_area", on_road},
                         {"least_room", rounded(sum.least_room)},
                         {"least_room_time_s", rounded(sum.least_room_time)},
                         {"unsafe_steps", sum.unsafe_steps},
@@ -126,6 +132,7 @@ json summary_json(const cr::scenario& s, const std::string& name, const measure_
           {"commonroad_version", s.version},
           {"benchmark_id", s.benchmark_id},
           {"policy", scenario_file::policy_name(settings.policy)},
+          {"drivable_area", settings.on_lanelets ? json("lanelets") : json(nullptr)},
           {"seed", 0},
           {"parameters", json::object()},
           {"duration_s", rounded(static_cast<double>(last - first) * s.time_step)},
@@ -201,9 +208,18 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
   std::atomic<std::size_t> next{0};
   std::mutex progress_mutex;
   std::size_t done = 0;
+  std::shared_ptr<const drivable_area> area;
+  if (settings.on_lanelets) {
+    try {
+      area = std::make_shared<const drivable_area>(cr::lanelet_polygons(s));
+    } catch (const std::invalid_argument& e) {
+      throw input_error(std::string("--on-lanelets: ") + e.what());
+    }
+  }
   const auto work = [&] {
     cr::measure_options options;
     options.config.policy = settings.policy;
+    options.drivable_area = area;
     for (std::size_t i = next++; i < agents.size(); i = next++) {
       options.agent = agents[i];
       try {

@@ -37,6 +37,7 @@ plan_input planning_input(const scenario& s, const measure_options& options, std
   in.ego.limits = options.limits;
   in.ego.limits.speed_cap = std::max(in.ego.limits.speed_cap, largest_speed(agent));
   in.nominal = recorded_maneuver(agent, static_cast<std::size_t>(now - agent.states.data()), s.time_step);
+  in.drivable_area = options.drivable_area;
   if (ids != nullptr) ids->clear();
 
   const double window = options.config.history_window;

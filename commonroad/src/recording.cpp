@@ -3,8 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
 #include <variant>
 
+#include "mm/drivable_area.hpp"
 #include "mm/footprint.hpp"
 #include "mm/geometry.hpp"
 
@@ -80,6 +83,24 @@ std::vector<vec2> world_polygon(const footprint& shape, const state& x) {
   }
   const placed_footprint placed = place(shape, pose{x.position, x.orientation});
   return {placed.vertices.begin(), placed.vertices.begin() + static_cast<std::ptrdiff_t>(placed.vertex_count)};
+}
+
+drivable_outline lanelet_polygons(const scenario& s) {
+  drivable_outline outline;
+  for (const lanelet& l : s.lanelets) {
+    std::vector<vec2> polygon = l.left_bound;
+    polygon.insert(polygon.end(), l.right_bound.rbegin(), l.right_bound.rend());
+    if (auto why = drivable_area_error({polygon})) {
+      throw std::invalid_argument("lanelet " + std::to_string(l.id) + ": its bounds cannot be part of a drivable area: " +
+                                  why->substr(why->find(' ') + 1));
+    }
+    const std::size_t i = outline.polygons.size();
+    outline.open_edges.push_back({i, l.left_bound.size() - 1});  // its end: the left bound's last point to the right's
+    outline.open_edges.push_back({i, polygon.size() - 1});       // its start: the right bound's first to the left's
+    outline.polygons.push_back(std::move(polygon));
+  }
+  if (outline.empty()) throw std::invalid_argument("the file has no lanelet: no drivable area can be made of its lanes");
+  return outline;
 }
 
 }  // namespace mm::commonroad

@@ -183,6 +183,13 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
                              "and discs");
     }
   }
+  if (options.on_lanelets) {
+    try {
+      out.drivable_area = lanelet_polygons(s);
+    } catch (const std::invalid_argument& e) {
+      throw measure_error(std::string("the replay on the lanelets: ") + e.what());
+    }
+  }
   if (const auto problem = sim::validation_error(out)) {
     throw measure_error("the replay of road user " + std::to_string(agent.id) +
                         " is not a valid simulation: " + *problem);

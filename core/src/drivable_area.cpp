@@ -87,7 +87,8 @@ bool inside_polygon(const std::vector<vec2>& polygon, vec2 p) {
 
 }  // namespace
 
-std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons) {
+std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons,
+                                               const std::vector<polygon_edge>& open_edges) {
   if (polygons.empty()) return "no polygon; expected at least one polygon of at least 3 vertices";
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const std::vector<vec2>& p = polygons[i];
@@ -118,11 +119,20 @@ std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec
              " vertices lie on one line); expected a polygon enclosing part of the road";
     }
   }
+  for (std::size_t k = 0; k < open_edges.size(); ++k) {
+    const polygon_edge& e = open_edges[k];
+    if (e.polygon >= polygons.size() || e.edge >= polygons[e.polygon].size()) {
+      return "open_edges[" + std::to_string(k) + "] = edge " + std::to_string(e.edge) + " of polygon " +
+             std::to_string(e.polygon) + "; expected an edge of one of the " + std::to_string(polygons.size()) +
+             " polygons (edge j from vertex j to the next)";
+    }
+  }
   return std::nullopt;
 }
 
-drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons) : polygons_(std::move(polygons)) {
-  if (auto error = drivable_area_error(polygons_)) throw std::invalid_argument("drivable area: " + *error);
+drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons, const std::vector<polygon_edge>& open_edges)
+    : polygons_(std::move(polygons)) {
+  if (auto error = drivable_area_error(polygons_, open_edges)) throw std::invalid_argument("drivable area: " + *error);
   boxes_.reserve(polygons_.size());
   for (const std::vector<vec2>& p : polygons_) {
     box b{p.front(), p.front()};
@@ -137,16 +147,20 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons) : polygons
   struct edge {
     segment s;
     box b;
+    bool open;
   };
   std::vector<edge> edges;
-  for (const std::vector<vec2>& p : polygons_) {
+  for (std::size_t i = 0; i < polygons_.size(); ++i) {
+    const std::vector<vec2>& p = polygons_[i];
     for (std::size_t j = 0; j < p.size(); ++j) {
       const segment s{p[j], p[(j + 1) % p.size()]};
       if (s.a == s.b) continue;
       const double w = drivable_area_closing;
+      const bool open = std::find(open_edges.begin(), open_edges.end(), polygon_edge{i, j}) != open_edges.end();
       edges.push_back({s,
                        {{std::min(s.a.x, s.b.x) - w, std::min(s.a.y, s.b.y) - w},
-                        {std::max(s.a.x, s.b.x) + w, std::max(s.a.y, s.b.y) + w}}});
+                        {std::max(s.a.x, s.b.x) + w, std::max(s.a.y, s.b.y) + w}},
+                       open});
     }
   }
   // By the left end of their boxes, so that each edge meets only those that can reach it.
@@ -157,8 +171,23 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons) : polygons
   double widest = 0.0;
   for (const edge& e : edges) widest = std::max(widest, e.b.hi.x - e.b.lo.x);
 
+  // A probe point next to an open edge counts as on the road: the road leads on there, and the
+  // corners where open edges meet (lanelets ending side by side at the map's edge, their bounds a
+  // few centimetres apart) leave no boundary.
+  std::vector<segment> open_segments;
+  for (const edge& e : edges) {
+    if (e.open) open_segments.push_back(e.s);
+  }
+  const auto covered = [&](vec2 p) {
+    if (contains(p)) return true;
+    for (const segment& o : open_segments) {
+      if (squared_distance_to_segment(p, o.a, o.b) <= 4.0 * drivable_area_closing * drivable_area_closing) return true;
+    }
+    return false;
+  };
   std::vector<double> cuts;
   for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (edges[e].open) continue;  // leads on beyond the map: never boundary
     const segment& s = edges[e].s;
     const vec2 along = s.b - s.a;
     const double length = norm(along);
@@ -189,22 +218,22 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons) : polygons
     }
     std::sort(cuts.begin(), cuts.end());
     // A piece is boundary when the union lies on one side of it and not on the other.
-    std::size_t open = boundary_.size();
+    std::size_t first_of_edge = boundary_.size();
     for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
       if ((cuts[c + 1] - cuts[c]) * length <= 1e-9) continue;
       const vec2 middle = s.a + (0.5 * (cuts[c] + cuts[c + 1])) * along;
-      const bool on_left = contains(middle + drivable_area_closing * left);
-      const bool on_right = contains(middle - drivable_area_closing * left);
+      const bool on_left = covered(middle + drivable_area_closing * left);
+      const bool on_right = covered(middle - drivable_area_closing * left);
       if (on_left == on_right) continue;
       const vec2 from = s.a + cuts[c] * along;
       const vec2 to = s.a + cuts[c + 1] * along;
       // Consecutive boundary pieces of one edge are one segment.
-      if (boundary_.size() > open && boundary_.back().b == from) {
+      if (boundary_.size() > first_of_edge && boundary_.back().b == from) {
         boundary_.back().b = to;
       } else {
         boundary_.push_back({from, to});
       }
-      open = boundary_.size() - 1;
+      first_of_edge = boundary_.size() - 1;
     }
   }
 }

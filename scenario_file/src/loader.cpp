@@ -36,8 +36,9 @@ scenario_error::scenario_error(std::string source, int line, int column, std::st
       field_(std::move(field)),
       problem_(std::move(problem)) {}
 
-std::vector<std::vector<vec2>> road_polygons(const road& r) {
-  std::vector<std::vector<vec2>> polygons;
+mm::drivable_outline road_polygons(const road& r) {
+  mm::drivable_outline outline;
+  std::vector<std::vector<vec2>>& polygons = outline.polygons;
   const double half = 0.5 * r.width;
   const auto left_of = [](vec2 a, vec2 b) {
     const vec2 d = b - a;
@@ -50,7 +51,6 @@ std::vector<std::vector<vec2>> road_polygons(const road& r) {
     const vec2 b = r.centre_line[i + 1];
     if (a == b) continue;
     const vec2 n = half * left_of(a, b);
-    polygons.push_back({a - n, b - n, b + n, a + n});
     if (previous < r.centre_line.size()) {
       const vec2 p = r.centre_line[previous];
       const vec2 m = half * left_of(p, a);
@@ -59,10 +59,14 @@ std::vector<std::vector<vec2>> road_polygons(const road& r) {
       const double turn = cross(a - p, b - a) / (norm(a - p) * norm(b - a));
       if (turn > 1e-6) polygons.push_back({a, a - m, a - n});
       if (turn < -1e-6) polygons.push_back({a, a + n, a + m});
+    } else {
+      outline.open_edges.push_back({0, 3});  // the start: from a + n to a − n
     }
+    polygons.push_back({a - n, b - n, b + n, a + n});
     previous = i;
   }
-  return polygons;
+  if (!polygons.empty()) outline.open_edges.push_back({polygons.size() - 1, 1});  // the end: from b − n to b + n
+  return outline;
 }
 
 namespace {
@@ -255,13 +259,16 @@ class mapper {
   /// further polygons, into `scenario::drivable_area`.
   void read_drivable_area(const map_view& area) {
     area.allow({"roads", "polygons_m"});
-    std::vector<std::vector<vec2>>& polygons = result_.scenario.drivable_area;
+    mm::drivable_outline& outline = result_.scenario.drivable_area;
+    std::vector<std::vector<vec2>>& polygons = outline.polygons;
     if (auto r = area.get("roads"); r && read_bool(ctx_, *r)) {
       if (result_.roads.empty()) {
         fail_value(ctx_, *r, "false, or roads: in the file (the drivable area is made of the roads it lists)");
       }
       for (const road& each : result_.roads) {
-        for (std::vector<vec2>& p : road_polygons(each)) polygons.push_back(std::move(p));
+        mm::drivable_outline piece = road_polygons(each);
+        for (const mm::polygon_edge& e : piece.open_edges) outline.open_edges.push_back({polygons.size() + e.polygon, e.edge});
+        for (std::vector<vec2>& p : piece.polygons) polygons.push_back(std::move(p));
       }
     }
     if (auto p = area.get("polygons_m")) {

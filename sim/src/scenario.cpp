@@ -190,7 +190,9 @@ std::optional<std::string> validation_error(const scenario& s) {
   }
   if (!c.error && !s.drivable_area.empty()) {
     c.where = "scenario";
-    if (auto why = mm::drivable_area_error(s.drivable_area)) c.fail("drivable_area", ": " + *why);
+    if (auto why = mm::drivable_area_error(s.drivable_area.polygons, s.drivable_area.open_edges)) {
+      c.fail("drivable_area", ": " + *why);
+    }
   }
   return c.error;
 }

@@ -75,6 +75,29 @@ TEST(maneuvermap_measure, agent_all_measures_every_vehicle_and_no_pedestrian_or_
   EXPECT_FALSE(contains(r.out, "        43 ")) << r.out;  // the parked vehicle
 }
 
+TEST(maneuvermap_measure, on_lanelets_counts_only_the_room_on_the_road_and_says_so) {
+  // USA_Lanker-1_1: a signalised intersection of recorded traffic; its lanelets are the road.
+  const temp_dir dir("measure_on_lanelets");
+  const std::string file = recording("USA_Lanker-1_1_T-1") + " --agent 1213 --agent 1214";
+  ASSERT_EQ(measure(file + " --out " + (dir / "open").string(), dir).code, 0);
+  const result r = measure(file + " --on-lanelets --out " + (dir / "road").string(), dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string summary = read_file(dir / "road/summary.json");
+  EXPECT_TRUE(contains(summary, "\"drivable_area\": \"lanelets\"")) << summary;
+  EXPECT_TRUE(contains(read_file(dir / "open/summary.json"), "\"drivable_area\": null"));
+  EXPECT_TRUE(contains(summary, "\"steps_on_drivable_area\": ")) << summary;
+  // Step by step the road takes room, never gives it (up to the interpolation's rounding).
+  const auto open = csv_rows(dir / "open/rooms.csv");
+  const auto road = csv_rows(dir / "road/rooms.csv");
+  ASSERT_EQ(open.size(), road.size());
+  std::size_t less = 0;
+  for (std::size_t k = 0; k < open.size(); ++k) {
+    EXPECT_LE(std::stod(road[k][3]), std::stod(open[k][3]) + 1e-4) << road[k][0] << " " << road[k][1];
+    less += std::stod(road[k][3]) < std::stod(open[k][3]) - 0.01 ? 1 : 0;
+  }
+  EXPECT_GT(less, 0U);
+}
+
 TEST(maneuvermap_measure, several_files_go_each_into_a_folder_of_its_name_and_into_one_table_of_every_road_user) {
   const temp_dir dir("measure_several");
   const std::string tutorial = recording("ZAM_Tutorial-1_2_T-1");

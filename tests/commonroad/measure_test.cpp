@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <numbers>
 #include <string>
 
@@ -182,6 +183,28 @@ TEST(measure, a_road_user_crossing_close_ahead_takes_room_away_and_one_far_away_
     EXPECT_EQ(room(step.result), 1.0) << step.time;
     EXPECT_EQ(step.result.mode, mm::planning_mode::nominal) << step.time;
   }
+}
+
+TEST(measure, on_its_lane_a_road_user_has_no_more_room_than_without_and_less_where_steering_leaves_the_lane) {
+  // The crossing with two lanelets: the ego's 3.5 m lane along y = 0 and the crossing car's along
+  // x = 25 (spec §5's road constraint on their union).
+  scenario s = crossing();
+  s.lanelets.push_back({10, {{-100, 1.75}, {200, 1.75}}, {{-100, -1.75}, {200, -1.75}}});
+  s.lanelets.push_back({11, {{23.25, -100}, {23.25, 100}}, {{26.75, -100}, {26.75, 100}}});
+  measure_options on_lane = of(1);
+  on_lane.drivable_area = std::make_shared<const mm::drivable_area>(lanelet_polygons(s));
+  const measurement open = measure(s, of(1));
+  const measurement road = measure(s, on_lane);
+  ASSERT_EQ(open.steps.size(), road.steps.size());
+  std::size_t less = 0;
+  for (std::size_t k = 0; k < road.steps.size(); ++k) {
+    EXPECT_TRUE(road.steps[k].result.on_drivable_area) << road.steps[k].time;
+    EXPECT_FALSE(open.steps[k].result.on_drivable_area);
+    // The road only takes room (up to the interpolation's rounding, docs/method.md §5).
+    EXPECT_LE(room(road.steps[k].result), room(open.steps[k].result) + 1e-4) << road.steps[k].time;
+    less += room(road.steps[k].result) < room(open.steps[k].result) - 0.05 ? 1 : 0;
+  }
+  EXPECT_GT(less, road.steps.size() / 2) << "a 3.5 m lane leaves a car little room to steer within 1 s";
 }
 
 TEST(measure, pedestrians_static_obstacles_and_unknown_ids_cannot_be_measured_and_the_message_says_what_can) {

@@ -158,8 +158,8 @@ TEST(replay, the_driven_road_user_keeps_the_speeds_it_was_recorded_at_unless_giv
   EXPECT_NEAR(constant_speed.state(0).speed, 10.0, 1e-9);
 }
 
-TEST(replay, the_loop_is_closed_the_planner_avoids_the_car_the_recorded_driver_ran_into) {
-  // The recording: car 1 drives at 10 m/s into car 2, which stands 30 m ahead from step 0.
+/// Car 1 recorded at 10 m/s from the origin east for 5 s, into car 2, parked 30 m ahead from step 0.
+scenario towards_a_parked_car() {
   scenario s;
   s.version = "2020a";
   s.time_step = 0.1;
@@ -171,6 +171,12 @@ TEST(replay, the_loop_is_closed_the_planner_avoids_the_car_the_recorded_driver_r
   parked.shape = mm::rectangle{4.5, 1.8};
   parked.states.push_back(at(0, {30, 0}, 0.0, 0.0));
   s.obstacles.push_back(parked);
+  return s;
+}
+
+TEST(replay, the_loop_is_closed_the_planner_avoids_the_car_the_recorded_driver_ran_into) {
+  // The recording: car 1 drives at 10 m/s into car 2, which stands 30 m ahead from step 0.
+  scenario s = towards_a_parked_car();
   replay_options options;
   options.agent = 1;
   options.avoidance = false;
@@ -186,6 +192,29 @@ TEST(replay, the_loop_is_closed_the_planner_avoids_the_car_the_recorded_driver_r
   EXPECT_FALSE(m.crash);
   EXPECT_GT(m.planning_steps, 0U);
   EXPECT_GT(m.time_in_brake_s + m.time_in_accel_s, 0.0) << "it left nominal planning to avoid it";
+}
+
+TEST(replay, on_the_lanelets_the_replay_s_drivable_area_is_their_union_and_the_driven_car_keeps_to_its_lane) {
+  // Car 1 at 10 m/s in a 3.5 m lane towards a car parked in the middle of it, 30 m ahead; beside
+  // the lane, open ground. Off the lanelets the planner may swerve out of the lane; on them it must
+  // stay in the lane, and brakes.
+  scenario s = towards_a_parked_car();
+  s.lanelets.push_back({5, {{-50, 1.75}, {150, 1.75}}, {{-50, -1.75}, {150, -1.75}}});
+  replay_options options;
+  options.agent = 1;
+  options.on_lanelets = true;
+  const mm::sim::scenario on_lane = replay_scenario(s, options);
+  ASSERT_EQ(on_lane.drivable_area.polygons.size(), 1U);
+  EXPECT_EQ(on_lane.drivable_area.open_edges.size(), 2U);
+  options.on_lanelets = false;
+  EXPECT_TRUE(replay_scenario(s, options).drivable_area.empty());
+  mm::sim::simulation sim(on_lane);
+  mm::sim::run(sim);
+  const mm::sim::run_metrics m = sim.metrics(0);
+  EXPECT_FALSE(m.crash);
+  // Half the lane less half the car: 0.85 m to either side.
+  EXPECT_LT(m.max_lateral_offset_m, 0.85);
+  EXPECT_GT(m.time_in_brake_s, 0.0);
 }
 
 /// The message of the measure_error `replay_scenario(s, driven)` throws; "no measure_error" if it

@@ -41,18 +41,18 @@ TEST(drivable_area, two_crossing_roads_are_bounded_by_their_union_not_by_the_edg
 }
 
 TEST(drivable_area, neighbouring_lanes_that_share_a_bound_make_one_road_without_an_edge_between_them) {
-  // Two lanes, the second given clockwise, sharing y = 0; and a third lane whose shared bound is
-  // 0.5 mm off (rounding between lanelets): closed too.
+  // Two lanes, the second given clockwise, sharing y = 0; and a pair whose shared bound is 2 cm off
+  // (as neighbouring lanelets of recorded maps are: each samples the bound at its own points).
   const drivable_area two({box(0.0, -3.5, 100.0, 0.0), {{0.0, 0.0}, {0.0, 3.5}, {100.0, 3.5}, {100.0, 0.0}}});
   EXPECT_NEAR(total_length(two.boundary()), 2.0 * (100.0 + 7.0), 1e-9);
   for (const segment& s : two.boundary()) {
     EXPECT_FALSE(std::abs(s.a.y) < 1e-9 && std::abs(s.b.y) < 1e-9) << "no boundary along the shared bound";
   }
-  const drivable_area near({box(0.0, -3.5, 100.0, 0.0), box(0.0, 0.0005, 100.0, 3.5)});
-  // Its boundary: the outer long edges, and the lanes' ends (the 0.5 mm between them is no edge).
-  EXPECT_NEAR(total_length(near.boundary()), 2.0 * 100.0 + 2.0 * (7.0 - 0.0005), 1e-9) << "the 0.5 mm gap is closed";
-  // A 5 cm gap is not a road: both of its sides are boundary.
-  const drivable_area apart({box(0.0, -3.5, 100.0, 0.0), box(0.0, 0.05, 100.0, 3.55)});
+  const drivable_area near({box(0.0, -3.5, 100.0, 0.0), box(0.0, 0.02, 100.0, 3.5)});
+  // Its boundary: the outer long edges, and the lanes' ends (the 2 cm between them is no edge).
+  EXPECT_NEAR(total_length(near.boundary()), 2.0 * 100.0 + 2.0 * (7.0 - 0.02), 1e-9) << "the 2 cm gap is closed";
+  // A gap wider than the closing distance is not a road: both of its sides are boundary.
+  const drivable_area apart({box(0.0, -3.5, 100.0, 0.0), box(0.0, 0.25, 100.0, 3.75)});
   EXPECT_NEAR(total_length(apart.boundary()), 2.0 * 2.0 * (100.0 + 3.5), 1e-9);
 }
 
@@ -65,6 +65,17 @@ TEST(drivable_area, a_road_with_a_branch_keeps_the_edge_pieces_beside_the_branch
   }
   EXPECT_NEAR(on_north_edge, 100.0 - 6.0, 1e-9);
   for (const segment& s : area.boundary()) EXPECT_TRUE(separates_inside_from_outside(area, s));
+}
+
+TEST(drivable_area, open_edges_lead_on_beyond_the_map_and_are_no_boundary) {
+  // A road whose two ends (edges 1 and 3 of the box) lead on: only its sides bound it; a second
+  // piece continuing it past x = 100 with its own open ends keeps that so.
+  const drivable_area road({box(0.0, -1.75, 100.0, 1.75), box(100.0, -1.75, 150.0, 1.75)}, {{0, 1}, {0, 3}, {1, 1}, {1, 3}});
+  EXPECT_NEAR(total_length(road.boundary()), 2.0 * 150.0, 1e-9);
+  for (const segment& s : road.boundary()) EXPECT_NEAR(std::abs(s.a.y), 1.75, 1e-12);
+  // The same without open edges: closed at x = 0 and x = 150.
+  const drivable_area closed({box(0.0, -1.75, 100.0, 1.75), box(100.0, -1.75, 150.0, 1.75)});
+  EXPECT_NEAR(total_length(closed.boundary()), 2.0 * 150.0 + 2.0 * 3.5, 1e-9);
 }
 
 TEST(drivable_area, bad_polygons_are_refused_with_the_polygon_the_vertex_and_what_was_expected) {
@@ -80,7 +91,10 @@ TEST(drivable_area, bad_polygons_are_refused_with_the_polygon_the_vertex_and_wha
   ASSERT_TRUE(flat);
   EXPECT_NE(flat->find("polygons[0] has no area"), std::string::npos) << *flat;
   EXPECT_FALSE(drivable_area_error({box(0, 0, 1, 1)}));
-  EXPECT_THROW(drivable_area({}), std::invalid_argument);
+  EXPECT_THROW(drivable_area(std::vector<std::vector<vec2>>{}), std::invalid_argument);
+  const auto no_such_edge = drivable_area_error({box(0, 0, 1, 1)}, {{0, 3}, {0, 4}});
+  ASSERT_TRUE(no_such_edge);
+  EXPECT_NE(no_such_edge->find("open_edges[1] = edge 4 of polygon 0"), std::string::npos) << *no_such_edge;
 }
 
 TEST(drivable_area, a_footprint_s_signed_distance_to_a_segment_is_its_gap_or_minus_its_penetration) {

@@ -212,20 +212,26 @@ agents:
      path: {start: {position_m: [1, 0], heading_deg: 0}, segments: [{straight_m: 40}]}}
 )";
   const loaded_scenario l = load_text(text, "road.yaml");
-  const std::vector<std::vector<mm::vec2>>& area = l.scenario.drivable_area;
-  // Two 4 m wide rectangles, the triangle that closes the outside of the left bend at (50, 0), the
-  // polygon given.
+  const std::vector<std::vector<mm::vec2>>& area = l.scenario.drivable_area.polygons;
+  // A 4 m wide rectangle, the triangle that closes the outside of the left bend at (50, 0), the
+  // second rectangle, the polygon given; the road's two ends lead on (open edges).
   ASSERT_EQ(area.size(), 4U);
   EXPECT_EQ(area[0], (std::vector<mm::vec2>{{0, -2}, {50, -2}, {50, 2}, {0, 2}}));
-  EXPECT_EQ(area[1], (std::vector<mm::vec2>{{52, 0}, {52, 50}, {48, 50}, {48, 0}}));
-  EXPECT_EQ(area[2], (std::vector<mm::vec2>{{50, 0}, {50, -2}, {52, 0}}));
+  EXPECT_EQ(area[1], (std::vector<mm::vec2>{{50, 0}, {50, -2}, {52, 0}}));
+  EXPECT_EQ(area[2], (std::vector<mm::vec2>{{52, 0}, {52, 50}, {48, 50}, {48, 0}}));
   EXPECT_EQ(area[3], (std::vector<mm::vec2>{{-10, -10}, {0, -10}, {0, 10}}));
+  EXPECT_EQ(l.scenario.drivable_area.open_edges, (std::vector<mm::polygon_edge>{{0, 3}, {2, 1}}));
   // Their union is the road: its outer corner at the bend is bevelled, the inside is whole.
-  const mm::drivable_area road(area);
+  const mm::drivable_area road(l.scenario.drivable_area);
   EXPECT_TRUE(road.contains({51.9, -0.05}));
   EXPECT_TRUE(road.contains({50.9, -0.9}));
   EXPECT_FALSE(road.contains({51.9, -1.9}));
   EXPECT_TRUE(road.contains({49.0, 1.0}));
+  // The ends are no boundary: nothing of it lies across the road at x = 0 (where the given triangle
+  // bounds it only below y = −2... its edge x = 0 runs from −10 to 10) or at y = 50.
+  for (const mm::segment& e : road.boundary()) {
+    EXPECT_FALSE(e.a.y == 50.0 && e.b.y == 50.0) << "the road's far end is open";
+  }
   // Without drivable_area: none.
   EXPECT_TRUE(load_text(full, "full.yaml").scenario.drivable_area.empty());
 }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
@@ -16,32 +17,55 @@ struct segment {
   vec2 b;
 };
 
+/// Edge `edge` of polygon `polygon`: from its vertex `edge` to the next (the last to the first).
+struct polygon_edge {
+  std::size_t polygon = 0;
+  std::size_t edge = 0;
+  friend bool operator==(const polygon_edge&, const polygon_edge&) = default;
+};
+
+/// What a drivable area is made of, as a value: its polygons [m] and the edges of theirs that lead
+/// on beyond the map (see `drivable_area`). No polygon: no drivable area.
+struct drivable_outline {
+  std::vector<std::vector<vec2>> polygons;
+  std::vector<polygon_edge> open_edges;
+  bool empty() const { return polygons.empty(); }
+};
+
 /// Gaps and slivers of a drivable area narrower than this are closed [m]: two polygons whose edges
-/// lie closer than it are one road there (lanelets that share a bound up to rounding).
-inline constexpr double drivable_area_closing = 1e-3;
+/// lie closer than it are one road there. Recorded road networks need it: the shared bound of two
+/// neighbouring lanelets is often sampled at different points by each, a centimetre or two apart
+/// (1.3 cm in USA_US101-4 of the bundled data), which a smaller closing would turn into a boundary
+/// down the middle of the road.
+inline constexpr double drivable_area_closing = 0.1;
 
 /// Largest |coordinate| of a drivable area's vertex [m]: road networks of a few hundred kilometres,
-/// with the millimetre of `drivable_area_closing` well above the doubles' rounding there.
+/// with the closing distance (`drivable_area_closing`) far above the doubles' rounding there.
 inline constexpr double largest_drivable_coordinate = 1e7;
 
 /// Why `polygons` cannot be a drivable area, naming the polygon and vertex (`polygons[i]`,
 /// `polygons[i][j]`): none given, fewer than 3 vertices, a coordinate that is not finite or larger
-/// than `largest_drivable_coordinate`, or no area (all vertices on one line) — or nothing.
-std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons);
+/// than `largest_drivable_coordinate`, or no area (all vertices on one line); or an open edge
+/// (`open_edges[k]`) that is not an edge of a polygon — or nothing.
+std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons,
+                                               const std::vector<polygon_edge>& open_edges = {});
 
 /// The drivable area of spec §5: the union of simple polygons in the world frame [m] (either
 /// orientation; a self-intersecting polygon counts by the even-odd rule), and the boundary of that
 /// union as segments, computed once: the parts of the polygons' edges with the union on one side and
 /// not on the other (`drivable_area_closing` from the edge). Edges shared by neighbouring polygons,
 /// and the parts of an edge inside another polygon, are not boundary: lanelets that overlap at an
-/// intersection or share a bound make one road.
+/// intersection or share a bound make one road. Edges marked *open* are never boundary: where a
+/// road leads on beyond what is mapped (the ends of a recording's lanelets, of a scenario's roads),
+/// a maneuver that drives through the end has not left the road.
 ///
 /// A footprint that starts inside the area leaves it exactly when it touches the boundary, which is
 /// what the planner tests (docs/method.md §5).
 class drivable_area {
  public:
-  /// Throws std::invalid_argument with `drivable_area_error`'s message when `polygons` has one.
-  explicit drivable_area(std::vector<std::vector<vec2>> polygons);
+  /// Throws std::invalid_argument with `drivable_area_error`'s message when there is one.
+  explicit drivable_area(std::vector<std::vector<vec2>> polygons, const std::vector<polygon_edge>& open_edges = {});
+  explicit drivable_area(const drivable_outline& outline) : drivable_area(outline.polygons, outline.open_edges) {}
 
   const std::vector<std::vector<vec2>>& polygons() const { return polygons_; }
   const std::vector<segment>& boundary() const { return boundary_; }

@@ -23,6 +23,8 @@ struct measure_settings {
   bool every_road_user = false;  ///< `--agent all`: every road user that can be measured
   mm::forecast_policy policy;    ///< of every measured road user (spec §7)
   std::size_t jobs = 1;          ///< road users measured at a time (the files do not depend on it)
+  /// `--on-lanelets`: the road constraint (spec §5) on the union of the file's lanelets.
+  bool on_lanelets = false;
   std::ostream* progress = nullptr;  ///< where to show how many road users are done (a terminal), or null
 };
 

@@ -2,6 +2,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <vector>
@@ -26,6 +27,10 @@ struct measure_options {
   /// The measured vehicle's limits (spec §3). Its speed cap is raised to its largest recorded
   /// speed where that is higher, so that every recorded state is a valid ego state.
   ego_limits limits;
+  /// The road constraint (spec §5): at each step the road user keeps its maneuvers on this area
+  /// when it starts the step on it (`plan_result::on_drivable_area`); e.g. `lanelet_polygons`.
+  /// None: no road constraint.
+  std::shared_ptr<const mm::drivable_area> drivable_area;
 };
 
 /// The planner's view of the measured road user at one of its recorded steps k, at time t_k = k·Δt.

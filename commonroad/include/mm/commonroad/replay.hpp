@@ -21,6 +21,9 @@ struct replay_options {
   std::optional<double> desired_speed;
   /// false: it follows its recorded path at its desired speed without planning (the baseline).
   bool avoidance = true;
+  /// The road constraint (spec §5) on the lanelets: the replay's drivable area is their union
+  /// (`lanelet_polygons`), which the planned road user keeps to within T_h while it is on it.
+  bool on_lanelets = false;
 };
 
 /// The recording as a simulation (closed loop for one road user, the others replayed):

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mm/drivable_area.hpp"
 #include "mm/footprint.hpp"
 #include "mm/geometry.hpp"
 
@@ -59,6 +60,13 @@ struct scenario {
   std::vector<obstacle> obstacles;  ///< in file order; ids unique among them
   std::vector<planning_problem> planning_problems;
 };
+
+/// The lanelets as polygons, each its left bound then its right bound backwards: their union is the
+/// road network, the drivable area of a measurement or a replay on the lanelets (spec §5's road
+/// constraint; `mm::drivable_area`). Each lanelet's start and end are open edges: where no other
+/// lanelet continues it, the road leads on beyond the recording's map. Throws
+/// `std::invalid_argument` naming the lanelet whose bounds enclose no area.
+drivable_outline lanelet_polygons(const scenario& s);
 
 /// The corners [m] of `shape` at the recorded state `x`, in the world: a rectangle's or a convex
 /// polygon's, placed at x's position and orientation; a disc as the regular 16-gon around it

@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "mm/drivable_area.hpp"
+
 #include "mm/forecast_policy.hpp"
 #include "mm/sim/roundabout.hpp"
 #include "mm/sim/scenario.hpp"
@@ -67,9 +69,10 @@ struct road {
 };
 
 /// The area a road covers, as polygons whose union it is: a rectangle `width` wide about each piece
-/// of the centre line, and at each bend the triangle that closes the outer side between two pieces
-/// (a bevelled joint). What `drivable_area: {roads: true}` makes of the file's roads.
-std::vector<std::vector<vec2>> road_polygons(const road& r);
+/// of the centre line, and at each bend, before the next piece's rectangle, the triangle that
+/// closes the outer side between the two (a bevelled joint). Its two ends are open edges: the road
+/// leads on beyond them. What `drivable_area: {roads: true}` makes of the file's roads.
+mm::drivable_outline road_polygons(const road& r);
 
 /// How a `meet:` entry timed two agents (travel at constant initial speed to the conflict point).
 struct meeting_report {

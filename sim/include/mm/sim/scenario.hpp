@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "mm/drivable_area.hpp"
 #include "mm/footprint.hpp"
 #include "mm/maneuver.hpp"
 #include "mm/planner_config.hpp"
@@ -96,9 +97,9 @@ struct scenario {
   std::vector<pedestrian> pedestrians;
   std::vector<static_obstacle> static_obstacles;
   /// The drivable area (spec §5's optional road constraint): the union of these polygons, world
-  /// frame [m] (`mm::drivable_area`). Every planning vehicle that starts a step on it keeps its
-  /// maneuvers on it within T_h. Empty: no road constraint.
-  std::vector<std::vector<vec2>> drivable_area;
+  /// frame [m], with their open edges (`mm::drivable_area`). Every planning vehicle that starts a
+  /// step on it keeps its maneuvers on it within T_h. Empty: no road constraint.
+  mm::drivable_outline drivable_area;
 };
 
 /// The first problem of `s`, naming the agent and the field, e.g.
