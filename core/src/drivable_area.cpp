@@ -131,7 +131,7 @@ std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec
 }
 
 drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons, const std::vector<polygon_edge>& open_edges)
-    : polygons_(std::move(polygons)) {
+    : polygons_(std::move(polygons)), open_edges_(open_edges) {
   if (auto error = drivable_area_error(polygons_, open_edges)) throw std::invalid_argument("drivable area: " + *error);
   boxes_.reserve(polygons_.size());
   for (const std::vector<vec2>& p : polygons_) {

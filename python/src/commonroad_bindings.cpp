@@ -5,7 +5,9 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -45,9 +47,17 @@ py::array_t<double> map_of(const cr::measurement& m, F column) {
 }
 
 cr::measure_options options_of(std::uint32_t agent, const std::optional<planner_config>& config,
-                               const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits) {
+                               const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits,
+                               const cr::scenario* on_lanelets = nullptr) {
   cr::measure_options options;
   options.agent = agent;
+  if (on_lanelets != nullptr) {
+    try {
+      options.drivable_area = std::make_shared<const drivable_area>(cr::lanelet_polygons(*on_lanelets));
+    } catch (const std::invalid_argument& e) {
+      throw cr::measure_error(std::string("on_lanelets: ") + e.what());
+    }
+  }
   if (config) options.config = *config;
   if (policy) options.config.policy = *policy;
   if (limits) options.limits = *limits;
@@ -176,28 +186,31 @@ void bind_commonroad(py::module_& m) {
 
   m.def("measure",
         [](const cr::scenario& s, std::uint32_t agent, const std::optional<planner_config>& config,
-           const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits) {
-          return cr::measure(s, options_of(agent, config, policy, limits));
+           const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits, bool on_lanelets) {
+          return cr::measure(s, options_of(agent, config, policy, limits, on_lanelets ? &s : nullptr));
         },
         py::arg("scenario"), py::arg("agent"), py::kw_only(), py::arg("config") = py::none(),
-        py::arg("policy") = py::none(), py::arg("limits") = py::none(), py::call_guard<py::gil_scoped_release>(),
+        py::arg("policy") = py::none(), py::arg("limits") = py::none(), py::arg("on_lanelets") = false,
+        py::call_guard<py::gil_scoped_release>(),
         "Plans road user `agent` at every recorded step (open loop: the recording is not changed) and returns "
-        "its Maneuverability Map and room, as `maneuvermap measure` (docs/commonroad.md). measure_error (a "
+        "its Maneuverability Map and room, as `maneuvermap measure` (docs/commonroad.md); on_lanelets: only the "
+        "room on the union of the file's lanelets (spec §5's road constraint, `--on-lanelets`). measure_error (a "
         "ValueError) when it cannot be measured. Releases the GIL.");
   m.def("planning_input",
         [](const cr::scenario& s, std::uint32_t agent, std::int64_t step, const std::optional<planner_config>& config,
-           const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits) {
+           const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits, bool on_lanelets) {
           std::vector<std::uint32_t> ids;
-          plan_input input = cr::planning_input(s, options_of(agent, config, policy, limits), step, &ids);
+          plan_input input =
+              cr::planning_input(s, options_of(agent, config, policy, limits, on_lanelets ? &s : nullptr), step, &ids);
           return py::make_tuple(input, ids);
         },
         py::arg("scenario"), py::arg("agent"), py::arg("step"), py::kw_only(), py::arg("config") = py::none(),
-        py::arg("policy") = py::none(), py::arg("limits") = py::none(),
+        py::arg("policy") = py::none(), py::arg("limits") = py::none(), py::arg("on_lanelets") = false,
         "(plan_input, obstacle ids): the planner's input for road user `agent` at recorded step `step`.");
   m.def("replay_scenario",
         [](const cr::scenario& s, std::uint32_t agent, const std::optional<planner_config>& config,
            const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits,
-           const std::optional<double>& desired_speed, bool avoidance) {
+           const std::optional<double>& desired_speed, bool avoidance, bool on_lanelets) {
           cr::replay_options options;
           const cr::measure_options measured = options_of(agent, config, policy, limits);
           options.agent = agent;
@@ -205,11 +218,12 @@ void bind_commonroad(py::module_& m) {
           options.limits = measured.limits;
           options.desired_speed = desired_speed;
           options.avoidance = avoidance;
+          options.on_lanelets = on_lanelets;
           return cr::replay_scenario(s, options);
         },
         py::arg("scenario"), py::arg("agent"), py::kw_only(), py::arg("config") = py::none(),
         py::arg("policy") = py::none(), py::arg("limits") = py::none(), py::arg("desired_speed") = py::none(),
-        py::arg("avoidance") = true,
+        py::arg("avoidance") = true, py::arg("on_lanelets") = false,
         "The recording as a simulation scenario with road user `agent` driven by the planner along its recorded "
         "path and the others replayed (docs/commonroad.md); run it with maneuvermap.sim.run. measure_error when "
         "it cannot be replayed.");

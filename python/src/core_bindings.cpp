@@ -3,13 +3,18 @@
 #include <pybind11/stl_bind.h>
 
 #include <cmath>
+#include <memory>
+#include <optional>
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "bindings.hpp"
 #include "fields.hpp"
 #include "mm/planner.hpp"
+#include "mm/road_constraint.hpp"
 #include "mm/reference_planner.hpp"
 #include "mm/scenario_file/loader.hpp"
 
@@ -203,13 +208,86 @@ void bind_config(py::module_& m) {
                      "compute every forecast time's indices (False: only those the decision reads)");
   m.def("forecast_times", &forecast_times, py::arg("config"), "The forecast grid τ_i = i·Δτ [s] (spec §4).");
 
+  py::class_<drivable_area, std::shared_ptr<drivable_area>> area(
+      m, "drivable_area",
+      "The drivable area of spec §5's road constraint: the union of polygons [m], and the edges of theirs that "
+      "lead on beyond the map (never boundary). Immutable; one area serves many planning inputs.");
+  area.def(py::init([](const std::vector<std::vector<vec2>>& polygons,
+                       const std::vector<std::pair<std::size_t, std::size_t>>& open_edges) {
+             std::vector<polygon_edge> edges;
+             for (const auto& [polygon, edge] : open_edges) edges.push_back({polygon, edge});
+             if (auto error = drivable_area_error(polygons, edges)) throw py::value_error("drivable area: " + *error);
+             return std::make_shared<drivable_area>(polygons, edges);
+           }),
+           py::arg("polygons"), py::arg("open_edges") = std::vector<std::pair<std::size_t, std::size_t>>{},
+           "From polygons (each a sequence of (x, y) [m], at least 3) and open edges ((polygon, edge) pairs, edge j "
+           "from vertex j to the next). ValueError naming the polygon and vertex when they cannot be one.")
+      .def_property_readonly("polygons", [](const drivable_area& a) {
+        py::list out;
+        for (const std::vector<vec2>& p : a.polygons()) out.append(points_of(p));
+        return out;
+      }, "each an array of shape (vertices, 2) [m]")
+      .def_property_readonly("open_edges", [](const drivable_area& a) {
+        std::vector<std::pair<std::size_t, std::size_t>> edges;
+        for (const polygon_edge& e : a.open_edges()) edges.emplace_back(e.polygon, e.edge);
+        return edges;
+      }, "(polygon, edge) pairs")
+      .def_property_readonly("boundary", [](const drivable_area& a) {
+        py::array_t<double> out({static_cast<py::ssize_t>(a.boundary().size()), py::ssize_t{2}, py::ssize_t{2}});
+        auto view = out.mutable_unchecked<3>();
+        for (py::ssize_t i = 0; i < view.shape(0); ++i) {
+          const segment& e = a.boundary()[static_cast<std::size_t>(i)];
+          view(i, 0, 0) = e.a.x;
+          view(i, 0, 1) = e.a.y;
+          view(i, 1, 0) = e.b.x;
+          view(i, 1, 1) = e.b.y;
+        }
+        return out;
+      }, "the segments of the union's boundary, shape (segments, 2 ends, 2) [m]")
+      .def("contains", &drivable_area::contains, py::arg("point"), "True when the point lies in one of the polygons.")
+      .def("__eq__", [](const drivable_area& a, py::handle other) {
+        if (!py::isinstance<drivable_area>(other)) return false;
+        const auto& b = other.cast<const drivable_area&>();
+        return a.polygons() == b.polygons() && a.open_edges() == b.open_edges();
+      })
+      .def("__repr__", [](const drivable_area& a) {
+        return "drivable_area(" + std::to_string(a.polygons().size()) + " polygons, " +
+               std::to_string(a.boundary().size()) + " boundary segments)";
+      })
+      .def(py::pickle([](const drivable_area& a) {
+             std::vector<std::pair<std::size_t, std::size_t>> edges;
+             for (const polygon_edge& e : a.open_edges()) edges.emplace_back(e.polygon, e.edge);
+             return py::make_tuple(a.polygons(), edges);
+           },
+           [](const py::tuple& state) {
+             std::vector<polygon_edge> edges;
+             for (const auto& [polygon, edge] : state[1].cast<std::vector<std::pair<std::size_t, std::size_t>>>()) {
+               edges.push_back({polygon, edge});
+             }
+             return std::make_shared<drivable_area>(state[0].cast<std::vector<std::vector<vec2>>>(), edges);
+           }));
+  area.attr("__hash__") = py::none();
+  m.def("starts_on_drivable_area", &starts_on_drivable_area, py::arg("area"), py::arg("ego"),
+        "True when the road constraint binds the ego: its reference point in the area, its footprint clear of the "
+        "boundary (spec §5).");
+
   py::class_<plan_input> in(m, "plan_input", "One planning step: the ego, u_nom and the observed obstacles.");
   with_fields(in)
       .def_readwrite("time", &plan_input::time, "planning time [s]; no observation may be later")
       .def_readwrite("ego", &plan_input::ego)
       .def_readwrite("nominal", &plan_input::nominal, "u_nom (spec §8)")
       .def_readwrite("obstacles", &plan_input::obstacles)
-      .def_readwrite("config", &plan_input::config);
+      .def_readwrite("config", &plan_input::config)
+      .def_property(
+          "drivable_area",
+          [](const plan_input& i) -> std::optional<std::shared_ptr<drivable_area>> {
+            if (!i.drivable_area) return std::nullopt;
+            return std::const_pointer_cast<drivable_area>(i.drivable_area);
+          },
+          [](plan_input& i, std::optional<std::shared_ptr<drivable_area>> given) {
+            i.drivable_area = given ? std::move(*given) : nullptr;
+          },
+          "the road constraint (spec §5): a maneuver that leaves this area within T_h is unsafe; None: none");
 }
 
 void bind_result(py::module_& m) {
@@ -287,6 +365,7 @@ void bind_result(py::module_& m) {
   pickled_by_members(pr, &plan_result::status, &plan_result::error, &plan_result::command, &plan_result::mode,
                      &plan_result::selected_family, &plan_result::forecast_time, &plan_result::forecast_index,
                      &plan_result::mi_brake_selected, &plan_result::mi_accelerate_selected, &plan_result::robust,
+                     &plan_result::on_drivable_area,
                      &plan_result::forecast_times, &plan_result::mi_brake, &plan_result::mi_accelerate,
                      &plan_result::excluded, &plan_result::time_to_collision, &plan_result::collision_time_step,
                      &plan_result::obstacles, &plan_result::samples, &plan_result::work);
@@ -297,6 +376,8 @@ void bind_result(py::module_& m) {
       .def_readonly("selected_family", &plan_result::selected_family, "spec §7")
       .def_readonly("robust", &plan_result::robust,
                     "robust policy: the command is safe under every non-excluded forecast time (else ADJ decided)")
+      .def_readonly("on_drivable_area", &plan_result::on_drivable_area,
+                    "the input's drivable area constrained this step (given, and the ego started on it)")
       .def_readonly("forecast_time", &plan_result::forecast_time, "τ̄ [s]")
       .def_readonly("forecast_index", &plan_result::forecast_index, "ī")
       .def_readonly("mi_brake_selected", &plan_result::mi_brake_selected, "MI− under the selected forecast times")

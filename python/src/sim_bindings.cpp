@@ -201,6 +201,10 @@ void bind_scenarios(py::module_& m) {
       .def_readwrite("time_step", &sim::scenario::time_step, "dt [s]")
       .def_readwrite("seed", &sim::scenario::seed, "seeds the sensor noise")
       .def_readwrite("planning_vehicles", &sim::scenario::planning_vehicles)
+      .def_property_readonly("drivable_area", [](const sim::scenario& s) -> std::optional<std::shared_ptr<drivable_area>> {
+        if (s.drivable_area.empty()) return std::nullopt;
+        return std::make_shared<drivable_area>(s.drivable_area);
+      }, "the road constraint of every planning vehicle (spec §5), or None")
       .def("validation_error", [](const sim::scenario& s) { return sim::validation_error(s); },
            "The first problem, naming the agent and the field, or None.")
       .def("__repr__", [](const sim::scenario& s) {

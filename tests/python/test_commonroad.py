@@ -84,3 +84,14 @@ def test_a_replay_drives_one_road_user_with_the_planner_and_replays_the_others(s
     assert len(planned.maps[0].times) > 0 and planned.metrics[0].max_lateral_offset_m > 0.5
     with pytest.raises(mm.commonroad.measure_error, match="a pedestrian"):
         mm.commonroad.replay_scenario(s, 35)
+
+
+def test_on_its_lanelets_a_road_user_has_at_most_the_room_it_has_off_them(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / "data/commonroad/USA_Lanker-1_1_T-1.xml")
+    open_ground = mm.commonroad.measure(s, 1214)
+    on_road = mm.commonroad.measure(s, 1214, on_lanelets=True)
+    assert np.all(on_road.rooms <= open_ground.rooms + 1e-4)
+    assert np.any(on_road.rooms < open_ground.rooms - 0.01)
+    assert any(step.result.on_drivable_area for step in on_road.steps)
+    replay = mm.commonroad.replay_scenario(s, 1214, on_lanelets=True)
+    assert replay.drivable_area is not None and len(replay.drivable_area.polygons) == len(s.lanelets)

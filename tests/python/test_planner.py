@@ -24,6 +24,32 @@ def test_a_scene_without_obstacles_leaves_all_the_room_and_keeps_the_nominal_man
     assert math.isinf(result.time_to_collision)
 
 
+def test_a_lane_takes_the_steering_room_that_leaves_it_and_the_command_keeps_to_it():
+    # A 3.5 m lane whose two ends lead on (open edges 1 and 3 of the rectangle): spec §5's road constraint.
+    lane = mm.drivable_area([[(-100.0, -1.75), (300.0, -1.75), (300.0, 1.75), (-100.0, 1.75)]],
+                            open_edges=[(0, 1), (0, 3)])
+    assert lane.boundary.shape == (2, 2, 2)
+    assert lane.contains((0.0, 1.0)) and not lane.contains((0.0, 2.0))
+    scene = mm.plan_input(ego=mm.ego_state(speed=10.0))
+    assert scene.drivable_area is None
+    free = mm.plan(scene)
+    scene.drivable_area = lane
+    on_lane = mm.plan(scene)
+    assert on_lane.on_drivable_area and not free.on_drivable_area
+    np.testing.assert_array_equal(free.mi_brake, np.ones(17))
+    assert 0.0 < on_lane.mi_brake.max() < 1.0, "the maneuvers that steer out of the lane within T_h are unsafe"
+    assert on_lane.command == mm.maneuver(), "driving straight on keeps to the lane"
+    assert mm.starts_on_drivable_area(lane, scene.ego)
+    # The input pickles with its area and plans the same; without the area the room is back.
+    again = pickle.loads(pickle.dumps(scene))
+    assert again == scene and again.drivable_area == lane
+    np.testing.assert_array_equal(mm.plan(again).mi_brake, on_lane.mi_brake)
+    scene.drivable_area = None
+    np.testing.assert_array_equal(mm.plan(scene).mi_brake, free.mi_brake)
+    with pytest.raises(ValueError, match=r"polygons\[0\] has 2 vertices"):
+        mm.drivable_area([[(0.0, 0.0), (1.0, 0.0)]])
+
+
 def test_the_crossing_scene_agrees_with_the_reference_planner_within_the_bound_of_the_spec():
     scene = crossing_scene()
     fast = mm.plan(scene)

@@ -36,6 +36,9 @@ CONVERTIBLE = {
     f"{PACKAGE}.vec2": f"Union[{PACKAGE}.vec2, Tuple[float, float], Sequence[float]]",
     f"{PACKAGE}.observation_list": f"Union[{PACKAGE}.observation_list, Sequence[{PACKAGE}.observation]]",
     f"{PACKAGE}.obstacle_track_list": f"Union[{PACKAGE}.obstacle_track_list, Sequence[{PACKAGE}.obstacle_track]]",
+    f"List[List[{PACKAGE}.vec2]]":
+        f"Sequence[Sequence[Union[{PACKAGE}.vec2, Tuple[float, float], Sequence[float]]]]",
+    f"List[Tuple[int, int]]": "Sequence[Tuple[int, int]]",
     f"{PACKAGE}.sim.planning_vehicle_list":
         f"Union[{PACKAGE}.sim.planning_vehicle_list, Sequence[{PACKAGE}.sim.planning_vehicle]]",
 }

@@ -68,6 +68,7 @@ class drivable_area {
   explicit drivable_area(const drivable_outline& outline) : drivable_area(outline.polygons, outline.open_edges) {}
 
   const std::vector<std::vector<vec2>>& polygons() const { return polygons_; }
+  const std::vector<polygon_edge>& open_edges() const { return open_edges_; }
   const std::vector<segment>& boundary() const { return boundary_; }
 
   /// True when `p` lies in one of the polygons (even-odd rule; on an edge counts as either).
@@ -79,6 +80,7 @@ class drivable_area {
     vec2 hi;
   };
   std::vector<std::vector<vec2>> polygons_;
+  std::vector<polygon_edge> open_edges_;
   std::vector<box> boxes_;
   std::vector<segment> boundary_;
 };

@@ -66,6 +66,32 @@ class disc:
     radius: float
     """[m]"""
 
+class drivable_area:
+    """The drivable area of spec §5's road constraint: the union of polygons [m], and the edges of theirs that lead on beyond the map (never boundary). Immutable; one area serves many planning inputs."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    def __init__(self, polygons: Sequence[Sequence[Union[vec2, Tuple[float, float], Sequence[float]]]], open_edges: Sequence[Tuple[int, int]] = ...) -> None:
+        """From polygons (each a sequence of (x, y) [m], at least 3) and open edges ((polygon, edge) pairs, edge j from vertex j to the next). ValueError naming the polygon and vertex when they cannot be one."""
+        ...
+    @property
+    def polygons(self) -> List[Any]:
+        """each an array of shape (vertices, 2) [m]"""
+        ...
+    @property
+    def open_edges(self) -> List[Tuple[int, int]]:
+        """(polygon, edge) pairs"""
+        ...
+    @property
+    def boundary(self) -> numpy.typing.NDArray[numpy.float64]:
+        """the segments of the union's boundary, shape (segments, 2 ends, 2) [m]"""
+        ...
+    def contains(self, point: Union[vec2, Tuple[float, float], Sequence[float]]) -> bool:
+        """True when the point lies in one of the polygons."""
+        ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __repr__(self) -> str: ...
+    def __getstate__(self) -> Tuple[Any, ...]: ...
+    def __setstate__(self, arg0: Tuple[Any, ...]) -> None: ...
+
 class effort_weights:
     """w_lon, w_lat of the effort J (spec §8) [s⁴/m²]."""
     __hash__: ClassVar[None]  # type: ignore[assignment]
@@ -507,6 +533,8 @@ class plan_input:
     @obstacles.setter
     def obstacles(self, value: Union[obstacle_track_list, Sequence[obstacle_track]]) -> None: ...
     config: planner_config
+    drivable_area: Optional[drivable_area]
+    """the road constraint (spec §5): a maneuver that leaves this area within T_h is unsafe; None: none"""
 
 def plan_reference(input: plan_input, resolution: reference_resolution = ...) -> plan_result:
     """The slow, obviously-correct reference of plan (spec §11): seconds per step."""
@@ -535,6 +563,10 @@ class plan_result:
     @property
     def robust(self) -> bool:
         """robust policy: the command is safe under every non-excluded forecast time (else ADJ decided)"""
+        ...
+    @property
+    def on_drivable_area(self) -> bool:
+        """the input's drivable area constrained this step (given, and the ego started on it)"""
         ...
     @property
     def forecast_time(self) -> float:
@@ -820,6 +852,10 @@ class sampling_resolution:
     """≥ 2"""
     curvatures: int
     """≥ 1"""
+
+def starts_on_drivable_area(area: drivable_area, ego: ego_state) -> bool:
+    """True when the road constraint binds the ego: its reference point in the area, its footprint clear of the boundary (spec §5)."""
+    ...
 
 def validation_error(input: plan_input) -> Optional[str]:
     """Why the input cannot be planned on (the field, its value and what was expected), or None."""

@@ -27,8 +27,8 @@ def measurable_road_users(scenario: scenario) -> List[int]:
     """The dynamic obstacles that are not pedestrians, in file order."""
     ...
 
-def measure(scenario: scenario, agent: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ...) -> measurement:
-    """Plans road user `agent` at every recorded step (open loop: the recording is not changed) and returns its Maneuverability Map and room, as `maneuvermap measure` (docs/commonroad.md). measure_error (a ValueError) when it cannot be measured. Releases the GIL."""
+def measure(scenario: scenario, agent: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ..., on_lanelets: bool = ...) -> measurement:
+    """Plans road user `agent` at every recorded step (open loop: the recording is not changed) and returns its Maneuverability Map and room, as `maneuvermap measure` (docs/commonroad.md); on_lanelets: only the room on the union of the file's lanelets (spec §5's road constraint, `--on-lanelets`). measure_error (a ValueError) when it cannot be measured. Releases the GIL."""
     ...
 
 class measure_error(ValueError): ...
@@ -146,7 +146,7 @@ class obstacle_role:
     @property
     def value(self) -> int: ...
 
-def planning_input(scenario: scenario, agent: int, step: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ...) -> Tuple[Any, ...]:
+def planning_input(scenario: scenario, agent: int, step: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ..., on_lanelets: bool = ...) -> Tuple[Any, ...]:
     """(plan_input, obstacle ids): the planner's input for road user `agent` at recorded step `step`."""
     ...
 
@@ -172,7 +172,7 @@ def recorded_ego(scenario: scenario, problem: planning_problem) -> Optional[int]
     """The obstacle that replays the planning problem's ego, or None (docs/commonroad.md)."""
     ...
 
-def replay_scenario(scenario: scenario, agent: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ..., desired_speed: Optional[float] = ..., avoidance: bool = ...) -> _sim.scenario:
+def replay_scenario(scenario: scenario, agent: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ..., desired_speed: Optional[float] = ..., avoidance: bool = ..., on_lanelets: bool = ...) -> _sim.scenario:
     """The recording as a simulation scenario with road user `agent` driven by the planner along its recorded path and the others replayed (docs/commonroad.md); run it with maneuvermap.sim.run. measure_error when it cannot be replayed."""
     ...
 
