@@ -33,6 +33,7 @@ bool cuts_core(const placed_footprint& f, const segment& s) {
     if (separates({-edge.y, edge.x})) return false;
   }
   const vec2 along = s.b - s.a;
+  if (along == vec2{}) return true;  // a point: the core's own normals decide
   return !separates({-along.y, along.x});
 }
 
@@ -68,6 +69,50 @@ double separated_distance(const placed_footprint& f, const segment& s) {
     }
   }
   return std::sqrt(best);
+}
+
+/// `signed_distance` of a rectangle and a segment, in the rectangle's frame: the segment's ends
+/// there, the separating-axis test over the rectangle's two axes and the segment's normal, and when
+/// apart the nearest of the ends to the box and of the box's corners to the segment.
+double rectangle_signed_distance(const placed_footprint& f, const segment& s) {
+  const auto local = [&](vec2 p) {
+    const vec2 d = p - f.centre;
+    return vec2{dot(d, f.axis), cross(f.axis, d)};
+  };
+  const vec2 p = local(s.a);
+  const vec2 q = local(s.b);
+  const double hl = f.half_length;
+  const double hw = f.half_width;
+  const vec2 along = q - p;
+  const double length = norm(along);
+  // The segment's extent against the box's along x, y and the segment's unit normal n.
+  const double x_lo = std::min(p.x, q.x);
+  const double x_hi = std::max(p.x, q.x);
+  const double y_lo = std::min(p.y, q.y);
+  const double y_hi = std::max(p.y, q.y);
+  bool cuts = x_lo < hl && -hl < x_hi && y_lo < hw && -hw < y_hi;
+  double n_depth = std::numeric_limits<double>::infinity();
+  if (cuts && length > 0.0) {
+    const vec2 n{-along.y / length, along.x / length};
+    const double offset = dot(p, n);
+    const double reach = hl * std::abs(n.x) + hw * std::abs(n.y);
+    cuts = std::abs(offset) < reach;
+    n_depth = reach - std::abs(offset);
+  }
+  if (cuts) {
+    const double depth = std::min({hl - x_lo, x_hi + hl, hw - y_lo, y_hi + hw, n_depth});
+    return -depth - f.radius;
+  }
+  const auto box_distance2 = [&](vec2 v) {
+    const double dx = std::max(std::abs(v.x) - hl, 0.0);
+    const double dy = std::max(std::abs(v.y) - hw, 0.0);
+    return dx * dx + dy * dy;
+  };
+  double best = std::min(box_distance2(p), box_distance2(q));
+  for (const vec2 corner : {vec2{hl, hw}, vec2{-hl, hw}, vec2{-hl, -hw}, vec2{hl, -hw}}) {
+    best = std::min(best, squared_distance_to_segment(corner, p, q));
+  }
+  return std::sqrt(best) - f.radius;
 }
 
 /// Crossing-number test of `p` in a polygon (even-odd rule).
@@ -248,6 +293,11 @@ bool drivable_area::contains(vec2 p) const {
 }
 
 double signed_distance(const placed_footprint& f, const segment& s) {
+  if (f.is_rectangle) return rectangle_signed_distance(f, s);
+  return signed_distance_reference(f, s);
+}
+
+double signed_distance_reference(const placed_footprint& f, const segment& s) {
   if (f.vertex_count >= 3 && cuts_core(f, s)) return -core_penetration(f, s) - f.radius;
   return separated_distance(f, s) - f.radius;
 }
@@ -256,11 +306,16 @@ double boundary_clearance(std::span<const segment> boundary, const placed_footpr
   // A disc about the core's vertex mean that holds the footprint: a segment farther than the best so
   // far from it cannot lower the minimum, which is then the same as over every segment.
   vec2 centre;
-  for (std::size_t i = 0; i < f.vertex_count; ++i) centre = centre + f.vertices[i];
-  centre = (1.0 / static_cast<double>(f.vertex_count)) * centre;
   double radius = 0.0;
-  for (std::size_t i = 0; i < f.vertex_count; ++i) radius = std::max(radius, norm(f.vertices[i] - centre));
-  radius = radius + f.radius;
+  if (f.is_rectangle) {
+    centre = f.centre;
+    radius = std::sqrt(f.half_length * f.half_length + f.half_width * f.half_width) * (1.0 + 1e-12) + f.radius;
+  } else {
+    for (std::size_t i = 0; i < f.vertex_count; ++i) centre = centre + f.vertices[i];
+    centre = (1.0 / static_cast<double>(f.vertex_count)) * centre;
+    for (std::size_t i = 0; i < f.vertex_count; ++i) radius = std::max(radius, norm(f.vertices[i] - centre));
+    radius = radius + f.radius;
+  }
   double best = cap;
   for (const segment& s : boundary) {
     const double far = std::sqrt(squared_distance_to_segment(centre, s.a, s.b)) - radius;

@@ -185,10 +185,10 @@ void road_field::decide(std::uint32_t b, std::span<const std::uint32_t> times, s
 double road_field::exact(std::size_t m) {
   if (exact_[m] != 0) return values_[m];
   const ego_state& ego = sweep_.ego();
+  // The smallest so far caps the next time's: `boundary_clearance` is min(cap, …), so the minimum is
+  // the same, and segments that cannot lower it are not asked.
   double value = cap_;
-  for (std::size_t r = 0; r <= sampled_times_; ++r) {
-    value = std::min(value, boundary_clearance(near_, placed(ego, at(r, m)), cap_));
-  }
+  for (std::size_t r = 0; r <= sampled_times_; ++r) value = boundary_clearance(near_, placed(ego, at(r, m)), value);
   values_[m] = clamped(value, cap_);
   exact_[m] = 1;
   return values_[m];

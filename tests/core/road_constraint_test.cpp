@@ -97,6 +97,32 @@ TEST(road_constraint, the_fast_road_field_finds_exactly_the_samples_that_leave_t
   std::printf("%zu roads: %zu samples leave the road, %zu stay on it\n", tested, leaving, staying);
 }
 
+TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_general_convex_test) {
+  // The rectangle's own-frame form against the separating-axis test of any convex core, on random
+  // rectangles and segments: apart, crossing, inside, end-on, through corners.
+  std::mt19937_64 rng(testing::property_seed() + 75);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::size_t count = testing::property_count(20000);
+  std::size_t crossing = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const rectangle shape{0.5 + 5.0 * unit(rng), 0.3 + 2.5 * unit(rng)};
+    const placed_footprint f = place(shape, {{4.0 * unit(rng) - 2.0, 4.0 * unit(rng) - 2.0}, 7.0 * unit(rng)});
+    const vec2 a{8.0 * unit(rng) - 4.0, 8.0 * unit(rng) - 4.0};
+    // Every fourth segment a point, every fourth through the rectangle's centre.
+    const vec2 b = trial % 4 == 0 ? a : trial % 4 == 1 ? 2.0 * f.centre - a : vec2{8.0 * unit(rng) - 4.0, 8.0 * unit(rng) - 4.0};
+    const segment s{a, b};
+    const double fast = signed_distance(f, s);
+    const double reference = signed_distance_reference(f, s);
+    ASSERT_NEAR(fast, reference, 1e-12 * (1.0 + std::abs(reference)))
+        << "rectangle " << shape.length << " x " << shape.width << " at (" << f.centre.x << ", " << f.centre.y
+        << ") axis (" << f.axis.x << ", " << f.axis.y << "), segment (" << a.x << ", " << a.y << ")-(" << b.x << ", "
+        << b.y << ")";
+    crossing += reference < 0.0 ? 1 : 0;
+  }
+  EXPECT_GT(crossing, count / 10);
+  EXPECT_LT(crossing, count - count / 10);
+}
+
 TEST(road_constraint, a_maneuver_proven_to_stay_on_the_road_stays_on_it_at_every_tenth_of_a_millisecond) {
   std::mt19937_64 rng(testing::property_seed() + 72);
   std::uniform_real_distribution<double> unit(0.0, 1.0);

@@ -91,8 +91,13 @@ class drivable_area {
 /// placements whose points are no more than d apart.
 double signed_distance(const placed_footprint& f, const segment& s);
 
+/// The reference for `signed_distance` of a footprint and a segment, which takes a rectangle in its
+/// own frame: the separating-axis test over every edge normal of the core and the segment's normal,
+/// and the vertex-to-edge distances, for any convex core.
+double signed_distance_reference(const placed_footprint& f, const segment& s);
+
 /// Smallest signed distance of the footprint to the segments [m], `cap` when every segment is
-/// farther than it (`cap` > 0): positive when the footprint is clear of them, ≤ 0 when it touches
+/// farther than it: positive when the footprint is clear of them (and cap > 0), ≤ 0 when it touches
 /// or crosses one. min(cap, min over the segments of `signed_distance`), exactly: segments that
 /// cannot lower it are not asked.
 double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap);
