@@ -232,7 +232,7 @@ TEST(builtin_scenarios, s7_a_passes_the_crosswalk_crowd_without_touching_anyone)
 
 TEST(example_scenarios, kerbs_along_the_roads_keep_a_in_its_lane_where_s1_swerves_round_b) {
   // examples/scenarios/s1-crossing-kerbs.yaml: S1 with the roads' edges as static obstacles
-  // (docs/method.md §5, item 16). Measured on 2026-12-05: no swerve (largest lateral offset
+  // (docs/method.md §5, item 16: a stricter test than the road constraint). Measured on 2026-12-05: no swerve (largest lateral offset
   // 0.0013 m against 1.04 m), 0.325 m from B, room 0.067 at the start against 1.
   const finished_run kerbs = run_builtin(MM_SOURCE_DIR "/examples/scenarios/s1-crossing-kerbs.yaml", "s1_kerbs");
   const finished_run open = run_builtin("s1-crossing", "s1_open");
