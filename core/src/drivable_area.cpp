@@ -135,6 +135,12 @@ bool inside_polygon(const std::vector<vec2>& polygon, vec2 p) {
 std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons,
                                                const std::vector<polygon_edge>& open_edges) {
   if (polygons.empty()) return "no polygon; expected at least one polygon of at least 3 vertices";
+  std::size_t vertices = 0;
+  for (const std::vector<vec2>& p : polygons) vertices += p.size();
+  if (vertices > largest_drivable_vertex_count) {
+    return std::to_string(vertices) + " vertices in all; expected at most " +
+           std::to_string(largest_drivable_vertex_count) + " (a road network of some hundred kilometres of lanes)";
+  }
   for (std::size_t i = 0; i < polygons.size(); ++i) {
     const std::vector<vec2>& p = polygons[i];
     const std::string name = "polygons[" + std::to_string(i) + "]";
@@ -149,16 +155,16 @@ std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec
         }
       }
     }
-    // Twice the largest triangle area from the first vertex, against the polygon's size: zero when
-    // every vertex lies on one line.
-    double extent = 0.0;
-    double largest = 0.0;
+    // The farthest vertex from the first, and the farthest from the line through both (twice the
+    // largest triangle on that base), against the polygon's size: zero when every vertex lies on
+    // one line.
+    std::size_t far = 0;
     for (std::size_t j = 1; j < p.size(); ++j) {
-      extent = std::max(extent, norm(p[j] - p[0]));
-      for (std::size_t k = j + 1; k < p.size(); ++k) {
-        largest = std::max(largest, std::abs(cross(p[j] - p[0], p[k] - p[0])));
-      }
+      if (squared_norm(p[j] - p[0]) > squared_norm(p[far] - p[0])) far = j;
     }
+    const double extent = norm(p[far] - p[0]);
+    double largest = 0.0;
+    for (std::size_t k = 1; k < p.size(); ++k) largest = std::max(largest, std::abs(cross(p[far] - p[0], p[k] - p[0])));
     if (!(largest > 1e-12 * extent * extent) || extent == 0.0) {
       return name + " has no area (its " + std::to_string(p.size()) +
              " vertices lie on one line); expected a polygon enclosing part of the road";

@@ -273,7 +273,7 @@ class mapper {
     }
     if (auto p = area.get("polygons_m")) {
       for (const field& item : read_list(ctx_, *p)) {
-        std::vector<vec2> polygon = read_points(ctx_, item, 3, 100000);
+        std::vector<vec2> polygon = read_points(ctx_, item, 3, mm::largest_drivable_vertex_count);
         std::vector<std::vector<vec2>> alone{polygon};
         if (auto why = mm::drivable_area_error(alone)) {
           fail_value(ctx_, item, "a polygon of at least 3 vertices not all on one line (" + *why + ")");

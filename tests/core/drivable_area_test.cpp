@@ -92,6 +92,8 @@ TEST(drivable_area, bad_polygons_are_refused_with_the_polygon_the_vertex_and_wha
   EXPECT_NE(flat->find("polygons[0] has no area"), std::string::npos) << *flat;
   EXPECT_FALSE(drivable_area_error({box(0, 0, 1, 1)}));
   EXPECT_THROW(drivable_area(std::vector<std::vector<vec2>>{}), std::invalid_argument);
+  const std::vector<std::vector<vec2>> too_many(largest_drivable_vertex_count / 4 + 1, box(0, 0, 1, 1));
+  EXPECT_NE(drivable_area_error(too_many)->find("100004 vertices in all; expected at most 100000"), std::string::npos);
   const auto no_such_edge = drivable_area_error({box(0, 0, 1, 1)}, {{0, 3}, {0, 4}});
   ASSERT_TRUE(no_such_edge);
   EXPECT_NE(no_such_edge->find("open_edges[1] = edge 4 of polygon 0"), std::string::npos) << *no_such_edge;

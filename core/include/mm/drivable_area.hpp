@@ -43,9 +43,15 @@ inline constexpr double drivable_area_closing = 0.1;
 /// with the closing distance (`drivable_area_closing`) far above the doubles' rounding there.
 inline constexpr double largest_drivable_coordinate = 1e7;
 
+/// Most vertices a drivable area may have in all: the boundary is found by testing each edge against
+/// the edges whose extents along x overlap its own, which is near-linear for road networks but
+/// quadratic in the worst case (every edge across every other), so the count is bounded.
+inline constexpr std::size_t largest_drivable_vertex_count = 100000;
+
 /// Why `polygons` cannot be a drivable area, naming the polygon and vertex (`polygons[i]`,
-/// `polygons[i][j]`): none given, fewer than 3 vertices, a coordinate that is not finite or larger
-/// than `largest_drivable_coordinate`, or no area (all vertices on one line); or an open edge
+/// `polygons[i][j]`): none given, more than `largest_drivable_vertex_count` vertices in all, fewer
+/// than 3 in a polygon, a coordinate that is not finite or larger than
+/// `largest_drivable_coordinate`, or no area (all vertices on one line); or an open edge
 /// (`open_edges[k]`) that is not an edge of a polygon — or nothing.
 std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec2>>& polygons,
                                                const std::vector<polygon_edge>& open_edges = {});
