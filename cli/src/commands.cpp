@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <memory>
 #include <numbers>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -112,7 +113,10 @@ json scene_json(const scenario_file::loaded_scenario& loaded) {
           {"time_step_s", rounded(s.time_step)},
           {"agents", agents},
           {"roundabout", ring},
-          {"roads", roads}};
+          {"roads", roads},
+          {"drivable_area", output::drivable_area_json(
+                                s.drivable_area.empty() ? nullptr
+                                                        : std::make_shared<const mm::drivable_area>(s.drivable_area))}};
 }
 
 json metrics_json(const mm::sim::run_metrics& m, const std::string& policy, bool with_cpu) {

@@ -45,7 +45,8 @@ std::pair<std::int64_t, std::int64_t> step_range(const cr::scenario& s) {
   return {first, last};
 }
 
-json scene_json(const cr::scenario& s, const std::string& name, const std::vector<std::uint32_t>& measured) {
+json scene_json(const cr::scenario& s, const std::string& name, const std::vector<std::uint32_t>& measured,
+                const std::shared_ptr<const drivable_area>& area) {
   const auto [first, last] = step_range(s);
   json agents = json::array();
   for (const cr::obstacle& o : s.obstacles) {
@@ -79,7 +80,8 @@ json scene_json(const cr::scenario& s, const std::string& name, const std::vecto
           {"agents", agents},
           {"roundabout", nullptr},
           {"roads", json::array()},
-          {"lanelets", lanelets}};
+          {"lanelets", lanelets},
+          {"drivable_area", output::drivable_area_json(area)}};
 }
 
 /// Per measured road user: the step of least room and how often the recorded maneuver was unsafe.
@@ -289,7 +291,7 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
   write("map.csv", map);
   write("decisions.csv", decisions);
   write("summary.json", summary_json(s, name, settings, outcome).dump(2) + "\n");
-  write("scene.json", scene_json(s, name, agents).dump() + "\n");
+  write("scene.json", scene_json(s, name, agents, area).dump() + "\n");
   write("rooms.csv", rooms);
   return outcome;
 }

@@ -5,12 +5,14 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <variant>
 
+#include "mm/drivable_area.hpp"
 #include "mm/footprint.hpp"
 #include "mm/geometry.hpp"
 
@@ -27,6 +29,15 @@ inline double rounded(double value, int decimals = 6) {
 
 /// A scene coordinate pair [m], to 4 decimals.
 inline json point(vec2 p) { return json::array({rounded(p.x, 4), rounded(p.y, 4)}); }
+
+/// scene.json's `drivable_area`: the boundary of the road constraint's area as segments
+/// [[[x, y], [x, y]], ...] (what a plot draws as the road's edges), or null without one.
+inline json drivable_area_json(const std::shared_ptr<const mm::drivable_area>& area) {
+  if (!area) return nullptr;
+  json segments = json::array();
+  for (const mm::segment& s : area->boundary()) segments.push_back(json::array({point(s.a), point(s.b)}));
+  return {{"boundary_m", segments}};
+}
 
 /// A CSV field: quoted when it holds a comma, a quote or a line break (RFC 4180; a line break
 /// becomes a space).

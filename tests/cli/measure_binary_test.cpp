@@ -86,6 +86,8 @@ TEST(maneuvermap_measure, on_lanelets_counts_only_the_room_on_the_road_and_says_
   EXPECT_TRUE(contains(summary, "\"drivable_area\": \"lanelets\"")) << summary;
   EXPECT_TRUE(contains(read_file(dir / "open/summary.json"), "\"drivable_area\": null"));
   EXPECT_TRUE(contains(summary, "\"steps_on_drivable_area\": ")) << summary;
+  EXPECT_TRUE(contains(read_file(dir / "road/scene.json"), "\"drivable_area\":{\"boundary_m\":[[["));
+  EXPECT_TRUE(contains(read_file(dir / "open/scene.json"), "\"drivable_area\":null"));
   // Step by step the road takes room, never gives it (up to the interpolation's rounding).
   const auto open = csv_rows(dir / "open/rooms.csv");
   const auto road = csv_rows(dir / "road/rooms.csv");

@@ -24,6 +24,7 @@ struct finished_run {
   std::vector<std::vector<std::string>> decisions;  ///< rows of decisions.csv
   std::vector<std::vector<std::string>> map;        ///< rows of map.csv
   nlohmann::json summary;
+  nlohmann::json scene;
 };
 
 finished_run run_builtin(const std::string& name, const std::string& dir_name,
@@ -41,6 +42,7 @@ finished_run run_builtin(const std::string& name, const std::string& dir_name,
   r.decisions = csv_rows(dir / "decisions.csv");
   r.map = csv_rows(dir / "map.csv");
   r.summary = nlohmann::json::parse(read_file(dir / "summary.json"));
+  r.scene = nlohmann::json::parse(read_file(dir / "scene.json"));
   return r;
 }
 
@@ -269,6 +271,10 @@ TEST(example_scenarios, on_the_road_a_swerves_round_b_only_within_its_lane) {
   EXPECT_LT(first_room(road), 1.0);
   EXPECT_GT(first_room(road), 0.3);
   EXPECT_DOUBLE_EQ(first_room(open), 1.0);
+  // scene.json draws the road's edges: the cross's eight sides (its four ends lead on).
+  ASSERT_TRUE(road.scene["drivable_area"].is_object()) << road.scene.dump().substr(0, 300);
+  EXPECT_EQ(road.scene["drivable_area"]["boundary_m"].size(), 8U);
+  EXPECT_TRUE(open.scene["drivable_area"].is_null());
 }
 
 // --- output files ------------------------------------------------------------------------------

@@ -453,6 +453,10 @@ def plot_topdown(run, out_dir, name, written):
         line = np.array(road["centre_line_m"])
         ax.plot(line[:, 0], line[:, 1], color=road_colour, lw=1, solid_capstyle="butt", zorder=0)
         draw_band(ax, line, road["width_m"], road_colour)
+    area = scene.get("drivable_area")
+    if area:  # the road constraint's edges (spec §5), where a maneuver leaves the road
+        for a, b in area["boundary_m"]:
+            ax.plot([a[0], b[0]], [a[1], b[1]], color="#525252", lw=1.2, solid_capstyle="butt", zorder=1)
     ring = scene.get("roundabout")
     if ring:
         cx, cy = ring["center_m"]
