@@ -9,68 +9,6 @@
 namespace mm {
 namespace {
 
-std::string number(double value) {
-  std::string text = std::to_string(value);
-  return text;
-}
-
-core_extent project_segment(const segment& s, vec2 axis) {
-  const double a = dot(s.a, axis);
-  const double b = dot(s.b, axis);
-  return {std::min(a, b), std::max(a, b)};
-}
-
-/// True when the segment meets the interior of the convex core (vertex_count ≥ 3): no edge normal
-/// of the core and not the segment's normal separates them (touching counts as separated).
-bool cuts_core(const placed_footprint& f, const segment& s) {
-  const auto separates = [&](vec2 axis) {
-    const core_extent pf = project(f, axis);
-    const core_extent ps = project_segment(s, axis);
-    return pf.hi <= ps.lo || ps.hi <= pf.lo;
-  };
-  for (std::size_t i = 0; i < f.vertex_count; ++i) {
-    const vec2 edge = f.vertices[(i + 1) % f.vertex_count] - f.vertices[i];
-    if (separates({-edge.y, edge.x})) return false;
-  }
-  const vec2 along = s.b - s.a;
-  if (along == vec2{}) return true;  // a point: the core's own normals decide
-  return !separates({-along.y, along.x});
-}
-
-/// Penetration depth of a segment that cuts a convex core: the smallest overlap of the projections
-/// over the core's edge normals and the segment's normal (separating-axis theorem, exact for
-/// convex sets in the plane).
-double core_penetration(const placed_footprint& f, const segment& s) {
-  double depth = std::numeric_limits<double>::infinity();
-  const auto overlap = [&](vec2 edge) {
-    const double length = norm(edge);
-    if (length == 0.0) return;
-    const vec2 axis{-edge.y / length, edge.x / length};
-    const core_extent pf = project(f, axis);
-    const core_extent ps = project_segment(s, axis);
-    depth = std::min(depth, std::min(pf.hi - ps.lo, ps.hi - pf.lo));
-  };
-  for (std::size_t i = 0; i < f.vertex_count; ++i) overlap(f.vertices[(i + 1) % f.vertex_count] - f.vertices[i]);
-  overlap(s.b - s.a);
-  return depth;
-}
-
-/// Distance of a segment to a core it does not cut: the nearest of the segment's ends to the core's
-/// edges and of the core's vertices to the segment.
-double separated_distance(const placed_footprint& f, const segment& s) {
-  double best = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 0; i < f.vertex_count; ++i) {
-    best = std::min(best, squared_distance_to_segment(f.vertices[i], s.a, s.b));
-    if (f.vertex_count >= 2) {
-      const vec2 a = f.vertices[i];
-      const vec2 b = f.vertices[(i + 1) % f.vertex_count];
-      best = std::min(best, squared_distance_to_segment(s.a, a, b));
-      best = std::min(best, squared_distance_to_segment(s.b, a, b));
-    }
-  }
-  return std::sqrt(best);
-}
-
 /// `signed_distance` of a rectangle and a segment, in the rectangle's frame: the segment's ends
 /// there, the separating-axis test over the rectangle's two axes and the segment's normal, and when
 /// apart the nearest of the ends to the box and of the box's corners to the segment.
@@ -150,7 +88,7 @@ std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec
     for (std::size_t j = 0; j < p.size(); ++j) {
       for (const double c : {p[j].x, p[j].y}) {
         if (!std::isfinite(c) || std::abs(c) > largest_drivable_coordinate) {
-          return name + "[" + std::to_string(j) + "] = (" + number(p[j].x) + ", " + number(p[j].y) +
+          return name + "[" + std::to_string(j) + "] = (" + std::to_string(p[j].x) + ", " + std::to_string(p[j].y) +
                  "); expected finite coordinates of at most 1e7 m in magnitude";
         }
       }
@@ -304,8 +242,12 @@ double signed_distance(const placed_footprint& f, const segment& s) {
 }
 
 double signed_distance_reference(const placed_footprint& f, const segment& s) {
-  if (f.vertex_count >= 3 && cuts_core(f, s)) return -core_penetration(f, s) - f.radius;
-  return separated_distance(f, s) - f.radius;
+  // The segment as a core of two vertices (one when it is a point), for the general form.
+  placed_footprint edge;
+  edge.vertices[0] = s.a;
+  edge.vertices[1] = s.b;
+  edge.vertex_count = s.a == s.b ? 1 : 2;
+  return signed_distance(f, edge);
 }
 
 double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap) {

@@ -11,14 +11,30 @@
 namespace mm {
 namespace {
 
-/// True when some edge normal of `f` separates the cores of `f` and `g` (touching counts as separated).
+struct interval {
+  double lo;
+  double hi;
+};
+
+interval project(const placed_footprint& f, vec2 axis) {
+  interval result{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
+  for (std::size_t i = 0; i < f.vertex_count; ++i) {
+    const double p = dot(f.vertices[i], axis);
+    result.lo = std::min(result.lo, p);
+    result.hi = std::max(result.hi, p);
+  }
+  return result;
+}
+
+/// True when some edge normal of `f` separates the cores of `f` and `g` (touching counts as separated);
+/// a segment's two edges give its normal.
 bool has_separating_edge(const placed_footprint& f, const placed_footprint& g) {
-  if (f.vertex_count < 3) return false;
+  if (f.vertex_count < 2) return false;
   for (std::size_t i = 0; i < f.vertex_count; ++i) {
     const vec2 edge = f.vertices[(i + 1) % f.vertex_count] - f.vertices[i];
     const vec2 axis{-edge.y, edge.x};
-    const core_extent pf = project(f, axis);
-    const core_extent pg = project(g, axis);
+    const interval pf = project(f, axis);
+    const interval pg = project(g, axis);
     if (pf.hi <= pg.lo || pg.hi <= pf.lo) return true;
   }
   return false;
@@ -81,8 +97,8 @@ double core_penetration(const placed_footprint& a, const placed_footprint& b) {
       const double length = norm(edge);
       if (length == 0.0) continue;
       const vec2 axis{-edge.y / length, edge.x / length};
-      const core_extent pa = project(a, axis);
-      const core_extent pb = project(b, axis);
+      const interval pa = project(a, axis);
+      const interval pb = project(b, axis);
       depth = std::min(depth, std::min(pa.hi - pb.lo, pb.hi - pa.lo));
     }
   }
@@ -129,16 +145,6 @@ double polygon_width(const std::vector<vec2>& v) {
 }
 
 }  // namespace
-
-core_extent project(const placed_footprint& f, vec2 axis) {
-  core_extent result{std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()};
-  for (std::size_t i = 0; i < f.vertex_count; ++i) {
-    const double p = dot(f.vertices[i], axis);
-    result.lo = std::min(result.lo, p);
-    result.hi = std::max(result.hi, p);
-  }
-  return result;
-}
 
 placed_footprint place(const footprint& shape, const pose& where) {
   return place(shape, where.position, {std::cos(where.heading), std::sin(where.heading)});

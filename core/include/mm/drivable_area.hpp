@@ -98,8 +98,7 @@ class drivable_area {
 double signed_distance(const placed_footprint& f, const segment& s);
 
 /// The reference for `signed_distance` of a footprint and a segment, which takes a rectangle in its
-/// own frame: the separating-axis test over every edge normal of the core and the segment's normal,
-/// and the vertex-to-edge distances, for any convex core.
+/// own frame: the footprints' general `signed_distance`, the segment a core of two vertices.
 double signed_distance_reference(const placed_footprint& f, const segment& s);
 
 /// Smallest signed distance of the footprint to the segments [m], `cap` when every segment is

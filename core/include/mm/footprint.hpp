@@ -34,7 +34,8 @@ using footprint = std::variant<rectangle, disc, convex_polygon>;
 inline constexpr std::size_t max_polygon_vertices = 16;
 
 /// A footprint placed in the world: the Minkowski sum of a convex core (a single point when
-/// `vertex_count == 1`, else a convex polygon) and a disc of `radius` [m].
+/// `vertex_count == 1`, a segment when 2 — a drivable area's edge, `drivable_area.hpp` — else a
+/// convex polygon) and a disc of `radius` [m].
 /// Rectangles and polygons have radius 0; a disc is a point core with its radius.
 struct placed_footprint {
   std::array<vec2, max_polygon_vertices> vertices{};
@@ -48,14 +49,6 @@ struct placed_footprint {
   double half_length = 0.0;
   double half_width = 0.0;
 };
-
-/// The extent [lo, hi] of a placed footprint's core along `axis`: the smallest and largest
-/// dot(vertex, axis) [m when `axis` is a unit vector]. The radius is not included.
-struct core_extent {
-  double lo;
-  double hi;
-};
-core_extent project(const placed_footprint& f, vec2 axis);
 
 /// A rectangle placed in the world without its corner list: what the rectangle closed forms need.
 /// The corners are computed as `place` computes them, so every distance below equals the one of
