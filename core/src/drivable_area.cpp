@@ -12,7 +12,26 @@ namespace {
 /// `signed_distance` of a rectangle and a segment, in the rectangle's frame: the segment's ends
 /// there, the separating-axis test over the rectangle's two axes and the segment's normal, and when
 /// apart the nearest of the ends to the box and of the box's corners to the segment.
+///
+/// First the case of a road's edge beside a car, in the segment's frame (unit direction e, normal
+/// n): when the rectangle lies on one side of the segment's line, |n·(c − a)| ≥ h_n, and its
+/// projection on the line within the segment, h_e ≤ e·(c − a) ≤ |b − a| − h_e, where
+/// h_n = l|n·x| + w|n·y| and h_e = l|e·x| + w|e·y| are its half extents along n and e, its nearest
+/// point to the line is nearest to the segment too: the distance is |n·(c − a)| − h_n.
 double rectangle_signed_distance(const placed_footprint& f, const segment& s) {
+  {
+    const vec2 along = s.b - s.a;
+    const double length = norm(along);
+    if (length > 0.0) {
+      const vec2 e = (1.0 / length) * along;
+      const vec2 d = f.centre - s.a;
+      const double offset = std::abs(cross(e, d));
+      const double h_n = f.half_length * std::abs(cross(e, f.axis)) + f.half_width * std::abs(dot(e, f.axis));
+      const double h_e = f.half_length * std::abs(dot(e, f.axis)) + f.half_width * std::abs(cross(e, f.axis));
+      const double x = dot(e, d);
+      if (offset >= h_n && x >= h_e && x <= length - h_e) return offset - h_n - f.radius;
+    }
+  }
   const auto local = [&](vec2 p) {
     const vec2 d = p - f.centre;
     return vec2{dot(d, f.axis), cross(f.axis, d)};
@@ -250,6 +269,19 @@ double signed_distance_reference(const placed_footprint& f, const segment& s) {
   return signed_distance(f, edge);
 }
 
+segment_line::segment_line(const segment& s) : a(s.a) {
+  const vec2 along = s.b - s.a;
+  const double length = norm(along);
+  if (length > 0.0) direction = (1.0 / length) * along;
+}
+
+double line_distance_bound(const placed_footprint& f, const segment_line& line) {
+  if (!f.is_rectangle || line.direction == vec2{}) return -std::numeric_limits<double>::infinity();
+  const vec2 e = line.direction;
+  const double h_n = f.half_length * std::abs(cross(e, f.axis)) + f.half_width * std::abs(dot(e, f.axis));
+  return std::abs(cross(e, f.centre - line.a)) - h_n - f.radius;
+}
+
 double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap) {
   // A disc about the core's vertex mean that holds the footprint: a segment farther than the best so
   // far from it cannot lower the minimum, which is then the same as over every segment.
@@ -266,8 +298,10 @@ double boundary_clearance(std::span<const segment> boundary, const placed_footpr
   }
   double best = cap;
   for (const segment& s : boundary) {
+    const double slack = 1e-9 * (1.0 + std::abs(best));
+    if (line_distance_bound(f, segment_line(s)) > best + slack) continue;
     const double far = std::sqrt(squared_distance_to_segment(centre, s.a, s.b)) - radius;
-    if (far > best + 1e-9 * (1.0 + std::abs(best))) continue;
+    if (far > best + slack) continue;
     best = std::min(best, signed_distance(f, s));
   }
   return best;

@@ -186,9 +186,10 @@ double road_field::exact(std::size_t m) {
   if (exact_[m] != 0) return values_[m];
   const ego_state& ego = sweep_.ego();
   // The smallest so far caps the next time's: `boundary_clearance` is min(cap, …), so the minimum is
-  // the same, and segments that cannot lower it are not asked.
+  // the same, and segments that cannot lower it are not asked. The latest time first: a maneuver that
+  // turns toward an edge is nearest it at T_h, and the earlier times then ask few segments.
   double value = cap_;
-  for (std::size_t r = 0; r <= sampled_times_; ++r) value = boundary_clearance(near_, placed(ego, at(r, m)), value);
+  for (std::size_t r = sampled_times_ + 1; r-- > 0;) value = boundary_clearance(near_, placed(ego, at(r, m)), value);
   values_[m] = clamped(value, cap_);
   exact_[m] = 1;
   return values_[m];

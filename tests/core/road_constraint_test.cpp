@@ -97,22 +97,35 @@ TEST(road_constraint, the_fast_road_field_finds_exactly_the_samples_that_leave_t
   std::printf("%zu roads: %zu samples leave the road, %zu stay on it\n", tested, leaving, staying);
 }
 
-TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_general_convex_test) {
+TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_general_convex_test_and_above_its_line_s) {
   // The rectangle's own-frame form against the separating-axis test of any convex core, on random
   // rectangles and segments: apart, crossing, inside, end-on, through corners.
   std::mt19937_64 rng(testing::property_seed() + 75);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   const std::size_t count = testing::property_count(20000);
   std::size_t crossing = 0;
+  std::size_t beside = 0;  // road edges beside the rectangle: the closed form of a line's distance
   for (std::size_t trial = 0; trial < count; ++trial) {
     const rectangle shape{0.5 + 5.0 * unit(rng), 0.3 + 2.5 * unit(rng)};
     const placed_footprint f = place(shape, {{4.0 * unit(rng) - 2.0, 4.0 * unit(rng) - 2.0}, 7.0 * unit(rng)});
-    const vec2 a{8.0 * unit(rng) - 4.0, 8.0 * unit(rng) - 4.0};
-    // Every fourth segment a point, every fourth through the rectangle's centre.
-    const vec2 b = trial % 4 == 0 ? a : trial % 4 == 1 ? 2.0 * f.centre - a : vec2{8.0 * unit(rng) - 4.0, 8.0 * unit(rng) - 4.0};
+    vec2 a{8.0 * unit(rng) - 4.0, 8.0 * unit(rng) - 4.0};
+    // Every fourth segment a point, every fourth through the rectangle's centre, every fourth a road's
+    // edge: 40 m long, within 4 m of the centre and ending anywhere near it.
+    vec2 b = trial % 4 == 0 ? a : trial % 4 == 1 ? 2.0 * f.centre - a : vec2{8.0 * unit(rng) - 4.0, 8.0 * unit(rng) - 4.0};
+    if (trial % 4 == 3) {
+      const vec2 e = unit_vector(7.0 * unit(rng));
+      a = f.centre + (8.0 * unit(rng) - 4.0) * vec2{-e.y, e.x} - (40.0 * unit(rng) - 2.0) * e;
+      b = a + 40.0 * e;
+      const vec2 d = f.centre - a;
+      const double h_n = f.half_length * std::abs(cross(e, f.axis)) + f.half_width * std::abs(dot(e, f.axis));
+      const double h_e = f.half_length * std::abs(dot(e, f.axis)) + f.half_width * std::abs(cross(e, f.axis));
+      beside += std::abs(cross(e, d)) > h_n && dot(e, d) > h_e && dot(e, d) < 40.0 - h_e ? 1 : 0;
+    }
     const segment s{a, b};
     const double fast = signed_distance(f, s);
     const double reference = signed_distance_reference(f, s);
+    ASSERT_LE(line_distance_bound(f, segment_line(s)), reference + 1e-12 * (1.0 + std::abs(reference)))
+        << "the line's bound above the distance";
     ASSERT_NEAR(fast, reference, 1e-12 * (1.0 + std::abs(reference)))
         << "rectangle " << shape.length << " x " << shape.width << " at (" << f.centre.x << ", " << f.centre.y
         << ") axis (" << f.axis.x << ", " << f.axis.y << "), segment (" << a.x << ", " << a.y << ")-(" << b.x << ", "
@@ -121,6 +134,7 @@ TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_
   }
   EXPECT_GT(crossing, count / 10);
   EXPECT_LT(crossing, count - count / 10);
+  EXPECT_GT(beside, count / 20);
 }
 
 TEST(road_constraint, a_maneuver_proven_to_stay_on_the_road_stays_on_it_at_every_tenth_of_a_millisecond) {

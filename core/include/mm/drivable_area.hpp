@@ -97,6 +97,21 @@ class drivable_area {
 /// placements whose points are no more than d apart.
 double signed_distance(const placed_footprint& f, const segment& s);
 
+/// A segment's line, for `line_distance_bound`: a point of it and its unit direction (zero for a
+/// point segment, which has no line).
+struct segment_line {
+  vec2 a;
+  vec2 direction;
+  explicit segment_line(const segment& s);
+};
+
+/// A lower bound of `signed_distance(f, s)` [m], cheap and tight for a road's edge beside a car:
+/// for a rectangle, its signed distance to the segment's line, |n·(c − a)| − h_n − radius, with n
+/// the line's normal and h_n = l|n·x| + w|n·y| the rectangle's half extent along it (the gap to a
+/// segment is no smaller than to its line, and a segment cuts no deeper than its line); −∞ for
+/// other footprints and point segments. Within rounding: compare with a slack.
+double line_distance_bound(const placed_footprint& f, const segment_line& line);
+
 /// The reference for `signed_distance` of a footprint and a segment, which takes a rectangle in its
 /// own frame: the footprints' general `signed_distance`, the segment a core of two vertices.
 double signed_distance_reference(const placed_footprint& f, const segment& s);
