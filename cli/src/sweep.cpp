@@ -1,13 +1,16 @@
 #include "mm/cli/sweep.hpp"
 
 #include <fmt/format.h>
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <mutex>
@@ -349,6 +352,10 @@ sweep_spec load_sweep_text(std::string_view text, const std::string& source, con
   YAML::Node root;
   try {
     root = YAML::Load(std::string(text));
+  } catch (const YAML::DeepRecursion& e) {
+    throw sf::scenario_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.line >= 0 ? e.mark.column + 1 : 0, "",
+                             "malformed YAML: nested " + std::to_string(e.depth()) +
+                                 " levels deep, deeper than the YAML reader goes (a sweep file nests a few levels)");
   } catch (const YAML::Exception& e) {
     throw sf::scenario_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.line >= 0 ? e.mark.column + 1 : 0, "",
                              "malformed YAML: " + e.msg);
@@ -499,8 +506,10 @@ sweep_spec load_sweep(std::string_view file_or_builtin) {
                                    " (`maneuvermap list` shows the built-in sweeps)");
     }
   }
+  std::error_code error;
+  if (std::filesystem::is_directory(arg, error)) throw sf::scenario_error(arg, 0, 0, "", "is a directory; expected a sweep file (YAML)");
   const std::optional<std::string> text = read_whole_file(arg);
-  if (!text) throw sf::scenario_error(arg, 0, 0, "", "cannot read the file");
+  if (!text) throw sf::scenario_error(arg, 0, 0, "", std::string("cannot read the file: ") + std::strerror(errno));
   return load_sweep_text(*text, arg, std::filesystem::path(arg).parent_path());
 }
 

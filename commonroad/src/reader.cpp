@@ -5,10 +5,13 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <ios>
 #include <limits>
@@ -104,6 +107,14 @@ class reader {
     const pugi::xml_parse_result parsed = document.load_buffer(text_.empty() ? "" : text_.data(), text_.size(),
                                                                pugi::parse_default, pugi::encoding_utf8);
     if (!parsed) {
+      if (text_.find_first_not_of(" \t\r\n") == std::string_view::npos) {
+        throw read_error(location(std::ptrdiff_t{0}) + "not well-formed XML: the file is empty; expected a <commonRoad> document");
+      }
+      // pugixml reports an element left open by the end of the text at its last byte: a file cut short.
+      if (parsed.offset + 1 >= static_cast<std::ptrdiff_t>(text_.size())) {
+        throw read_error(location(parsed.offset) + "not well-formed XML: the file ends inside the document (" +
+                         parsed.description() + "); is it cut short?");
+      }
       throw read_error(location(parsed.offset) + "not well-formed XML: " + parsed.description());
     }
     const pugi::xml_node root = document.document_element();
@@ -424,12 +435,12 @@ scenario read_scenario_text(std::string_view text, std::string_view source) { re
 scenario read_scenario(const std::filesystem::path& file) {
   const std::string name = file.string();
   std::error_code error;
-  if (std::filesystem::is_directory(file, error)) throw read_error(name + ": cannot read a directory as a scenario file");
+  if (std::filesystem::is_directory(file, error)) throw read_error(name + ": is a directory; expected a CommonRoad file (XML)");
   std::ifstream in(file, std::ios::binary);
-  if (!in) throw read_error(name + ": cannot open the file");
+  if (!in) throw read_error(name + ": cannot open the file: " + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw read_error(name + ": cannot read the file");
+  if (in.bad()) throw read_error(name + ": cannot read the file: " + std::strerror(errno));
   return read_scenario_text(text.str(), name);
 }
 

@@ -1,5 +1,6 @@
 #include "mm/scenario_file/loader.hpp"
 
+#include <yaml-cpp/depthguard.h>
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
@@ -785,6 +786,10 @@ loaded_scenario load_text(std::string_view text, const std::string& source, cons
   YAML::Node root;
   try {
     root.reset(YAML::Load(std::string(text)));
+  } catch (const YAML::DeepRecursion& e) {
+    throw scenario_error(source, e.mark.line >= 0 ? e.mark.line + 1 : 0, e.mark.column >= 0 ? e.mark.column + 1 : 0, "",
+                         "malformed YAML: nested " + std::to_string(e.depth()) +
+                             " levels deep, deeper than the YAML reader goes (a scenario file nests a few levels)");
   } catch (const YAML::Exception& e) {
     const int line = e.mark.line >= 0 ? e.mark.line + 1 : 0;
     const int column = e.mark.column >= 0 ? e.mark.column + 1 : 0;
@@ -799,11 +804,15 @@ loaded_scenario load_text(std::string_view text, const std::string& source, cons
 }
 
 loaded_scenario load_file(const std::filesystem::path& file, const load_options& options) {
+  std::error_code error;
+  if (std::filesystem::is_directory(file, error)) {
+    throw scenario_error(file.string(), 0, 0, "", "is a directory; expected a scenario file (YAML)");
+  }
   std::ifstream in(file, std::ios::binary);
   if (!in) throw scenario_error(file.string(), 0, 0, "", std::string("cannot read the file: ") + std::strerror(errno));
   std::ostringstream text;
   text << in.rdbuf();
-  if (in.bad()) throw scenario_error(file.string(), 0, 0, "", "cannot read the file");
+  if (in.bad()) throw scenario_error(file.string(), 0, 0, "", std::string("cannot read the file: ") + std::strerror(errno));
   return load_text(text.str(), file.string(), options);
 }
 

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <filesystem>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -212,14 +213,38 @@ TEST(scenario_file_errors_misc, an_unknown_override_names_the_parameters_the_sce
   }
 }
 
-TEST(scenario_file_errors_misc, a_missing_file_and_an_unknown_built_in_are_reported) {
-  EXPECT_THROW(load_file("/nonexistent/dir/x.yaml"), scenario_error);
+TEST(scenario_file_errors_misc, a_missing_file_a_directory_and_an_unknown_built_in_are_reported) {
+  try {
+    load_file("/nonexistent/dir/x.yaml");
+    FAIL();
+  } catch (const scenario_error& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/dir/x.yaml: cannot read the file: No such file or directory"),
+              std::string::npos)
+        << e.what();
+  }
+  try {
+    load_file(std::filesystem::temp_directory_path());
+    FAIL();
+  } catch (const scenario_error& e) {
+    EXPECT_NE(std::string(e.what()).find(": is a directory; expected a scenario file"), std::string::npos) << e.what();
+  }
   try {
     load("s2-roundabot");
     FAIL();
   } catch (const scenario_error& e) {
     EXPECT_NE(std::string(e.what()).find("no such file or built-in scenario; did you mean s2-roundabout?"), std::string::npos)
         << e.what();
+  }
+}
+
+TEST(scenario_file_errors_misc, yaml_nested_too_deep_is_reported_as_such) {
+  const std::string deep = "format: maneuvermap-scenario/1\nname: x\nagents: " + std::string(5000, '[') + "\n";
+  try {
+    load_text(deep, "deep.yaml");
+    FAIL();
+  } catch (const scenario_error& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("deep.yaml:", 0), 0U) << e.what();
+    EXPECT_NE(std::string(e.what()).find("levels deep, deeper than the YAML reader goes"), std::string::npos) << e.what();
   }
 }
 
