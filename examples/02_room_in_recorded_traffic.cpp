@@ -2,8 +2,10 @@
 //   02_room_in_recorded_traffic FILE.xml ROAD_USER_ID
 // prints, at each recorded step, the time, the road user's speed, the selected forecast time τ̄,
 // MI− and MI+ under it, and the planning mode (docs/commonroad.md).
+#include <charconv>
+#include <cstdint>
 #include <cstdio>
-#include <cstdlib>
+#include <cstring>
 #include <exception>
 
 #include "mm/commonroad/measure.hpp"
@@ -15,9 +17,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   try {
-    const mm::commonroad::scenario recording = mm::commonroad::read_scenario(argv[1]);
     mm::commonroad::measure_options options;
-    options.agent = static_cast<std::uint32_t>(std::strtoul(argv[2], nullptr, 10));
+    const char* id = argv[2];
+    const auto [end, error] = std::from_chars(id, id + std::strlen(id), options.agent);
+    if (error != std::errc() || *end != '\0' || options.agent == 0) {
+      std::fprintf(stderr, "ROAD_USER_ID %s: expected an obstacle id of the file, a positive integer\n", id);
+      return 2;
+    }
+    const mm::commonroad::scenario recording = mm::commonroad::read_scenario(argv[1]);
     const mm::commonroad::measurement m = mm::commonroad::measure(recording, options);
     std::printf("t_s,speed_mps,tau_bar_s,mi_brake,mi_accel,mode\n");
     for (const mm::commonroad::measured_step& step : m.steps) {

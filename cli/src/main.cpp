@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -21,6 +22,7 @@
 #include "mm/cli/plot.hpp"
 #include "mm/cli/sweep.hpp"
 #include "mm/commonroad/reader.hpp"
+#include "mm/planner.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/sim/memory.hpp"
 #include "output_files.hpp"
@@ -32,6 +34,35 @@ namespace sf = mm::scenario_file;
 constexpr int exit_ok = 0;
 constexpr int exit_internal = 1;
 constexpr int exit_bad_input = 2;
+
+/// An option's check: an integer from `lo` to `hi`; CLI11's own says "Value abc not in range".
+CLI::Validator integer_in(std::uint64_t lo, std::uint64_t hi, std::string what = "an integer") {
+  return CLI::Validator(
+      [=](std::string& text) {
+        std::uint64_t value = 0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (!text.empty() && ec == std::errc() && end == text.data() + text.size() && value >= lo && value <= hi) return std::string();
+        return fmt::format("expected {} from {} to {}, got {}", what, lo, hi, text);
+      },
+      "");
+}
+
+/// An option's check: a number in `unit` from `lo` to `hi`; without bounds, any number (the command
+/// checks its range, e.g. a time within the run), where CLI11's own says "Could not convert".
+CLI::Validator number_in(std::string_view unit, double lo = -std::numeric_limits<double>::infinity(),
+                         double hi = std::numeric_limits<double>::infinity()) {
+  return CLI::Validator(
+      [=](std::string& text) {
+        double value = 0.0;
+        const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+        const bool number = !text.empty() && ec == std::errc() && end == text.data() + text.size();
+        const bool bounded = std::isfinite(lo) || std::isfinite(hi);
+        if (number && (!bounded || (value >= lo && value <= hi))) return std::string();
+        if (!bounded) return fmt::format("expected a number of {}, got {}", unit, text);
+        return fmt::format("expected a number of {} from {} to {}, got {}", unit, lo, hi, text);
+      },
+      "");
+}
 
 /// Options shared by the commands that load a scenario.
 struct scenario_options {
@@ -67,6 +98,18 @@ mm::forecast_policy policy_option(const std::string& text) {
     throw mm::cli::input_error("--policy " + text + ": expected " + std::string(sf::policy_forms) + ", e.g. const:1.0");
   }
   return *policy;
+}
+
+/// `--policy` for a planner of configuration `config` (measure, replay: the default one): its
+/// constant forecast time must lie on that configuration's forecast grid.
+mm::forecast_policy policy_option(const std::string& text, mm::planner_config config) {
+  config.policy = policy_option(text);
+  mm::plan_input probe;
+  probe.config = config;
+  if (const std::optional<std::string> error = mm::validation_error(probe)) {
+    throw mm::cli::input_error("--policy " + text + ": " + *error);
+  }
+  return config.policy;
 }
 
 sf::loaded_scenario load(const scenario_options& o) {
@@ -255,7 +298,7 @@ mm::cli::measure_outcome measure_file(const std::string& file, const std::string
 int measure_command(const measure_command_options& o) {
   mm::cli::measure_settings settings;
   parse_agents(o.agents, settings);
-  if (!o.policy.empty()) settings.policy = policy_option(o.policy);
+  if (!o.policy.empty()) settings.policy = policy_option(o.policy, mm::planner_config{});
   settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
   settings.on_lanelets = o.on_lanelets;
   settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
@@ -270,11 +313,18 @@ int measure_command(const measure_command_options& o) {
   }
   if (o.files.size() == 1) {
     settings.out_dir = o.out.empty() ? std::filesystem::path("out") / names.front() : std::filesystem::path(o.out);
-    measure_file(o.files.front(), names.front(), settings, o.plots);
+    try {
+      measure_file(o.files.front(), names.front(), settings, o.plots);
+    } catch (const mm::cli::input_error& e) {
+      throw mm::cli::input_error(o.files.front() + ": " + e.what());
+    } catch (const mm::commonroad::measure_error& e) {
+      throw mm::commonroad::measure_error(o.files.front() + ": " + e.what());
+    }
     return exit_ok;
   }
   if (!settings.agents.empty()) {
-    throw mm::cli::input_error("--agent ID names a road user of one file; with several files give --agent all, or no "
+    throw mm::cli::input_error("--agent " + std::to_string(settings.agents.front()) +
+                               ": an id names a road user of one file; with several files give --agent all, or no "
                                "--agent for each file's recorded ego");
   }
   const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / "measure" : std::filesystem::path(o.out);
@@ -314,14 +364,22 @@ struct replay_command_options {
 };
 
 int replay_command(const replay_command_options& o) {
-  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
   mm::commonroad::replay_options options;
-  options.agent = o.agent ? *o.agent : mm::cli::default_replay_agent(recording);
-  if (!o.policy.empty()) options.config.policy = policy_option(o.policy);
+  if (!o.policy.empty()) options.config.policy = policy_option(o.policy, options.config);
   if (o.desired_speed_kmh) options.desired_speed = *o.desired_speed_kmh / 3.6;
   options.avoidance = !o.no_avoidance;
   options.on_lanelets = o.on_lanelets;
-  const sf::loaded_scenario loaded = mm::cli::replay_loaded(recording, options, o.file);
+  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
+  const sf::loaded_scenario loaded = [&] {
+    try {
+      options.agent = o.agent ? *o.agent : mm::cli::default_replay_agent(recording);
+      return mm::cli::replay_loaded(recording, options, o.file);
+    } catch (const mm::cli::input_error& e) {
+      throw mm::cli::input_error(o.file + ": " + e.what());
+    } catch (const mm::commonroad::measure_error& e) {
+      throw mm::commonroad::measure_error(o.file + ": " + e.what());
+    }
+  }();
   const std::string name = std::filesystem::path(o.file).stem().string();
   mm::cli::run_settings settings;
   settings.out_dir = o.out.empty() ? std::filesystem::path("out") / (name + "-replay") : std::filesystem::path(o.out);
@@ -366,7 +424,7 @@ int main(int argc, char** argv) {
   std::size_t run_jobs = 0;
   run->add_option("--jobs,-j", run_jobs,
                   "Threads planning the vehicles of a step (outputs do not depend on it; default: the number of cores)")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
+      ->check(integer_in(1, 256))
       ->type_name("N");
   run->add_flag("--plots", run_plots, "Then draw the run's figures into its output directory (maneuvermap plot)");
 
@@ -375,12 +433,12 @@ int main(int argc, char** argv) {
       "sweep", "Run a parameter sweep (grid of parameters x policies x seeded repetitions) in parallel; write runs.csv, table.csv, table.md");
   sweep->add_option("FILE", sweep_opts.file, "Sweep file, or the name of a built-in sweep (maneuvermap list)")->required();
   sweep->add_option("--jobs,-j", sweep_opts.jobs, "Runs in parallel (default: the number of cores)")
-      ->check(CLI::Range(1U, 256U))
+      ->check(integer_in(1, 256))
       ->type_name("N");
   sweep->add_option("--out", sweep_opts.out, "Output directory (default out/<sweep name>)")->type_name("DIR");
   sweep->add_flag("--keep-runs", sweep_opts.keep_runs, "Also write every run's own output directory under DIR/runs/");
   sweep->add_option("--repetitions", sweep_opts.repetitions, "Replace the sweep file's repetitions (e.g. 1 for a preview)")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->check(integer_in(1, 1000000))
       ->type_name("N");
   sweep->add_flag("--plots", sweep_opts.plots, "Then draw the sweep's figures into DIR (maneuvermap plot)");
 
@@ -400,9 +458,14 @@ int main(int argc, char** argv) {
   CLI::App* snapshot = app.add_subcommand(
       "snapshot", "Run to a time, re-plan one planning vehicle and write its sampled maneuvers and their safety as CSV");
   add_scenario_options(*snapshot, snapshot_options, true);
-  snapshot->add_option("--time", snapshot_time, "Simulation time to stop at [s]")->required()->type_name("SECONDS");
+  snapshot->add_option("--time", snapshot_time, "Simulation time to stop at [s]")
+      ->required()
+      ->check(number_in("seconds"))
+      ->type_name("SECONDS");
   snapshot->add_option("--agent", snapshot_agent, "The planning vehicle to re-plan")->required()->type_name("NAME");
-  snapshot->add_option("--tau", snapshot_tau, "Only this forecast time [s] (default: every one)")->type_name("SECONDS");
+  snapshot->add_option("--tau", snapshot_tau, "Only this forecast time [s] (default: every one)")
+      ->check(number_in("seconds"))
+      ->type_name("SECONDS");
   snapshot->add_option("--out", snapshot_out, "CSV file to write (default: standard output)")->type_name("FILE.csv");
 
   measure_command_options measure_options;
@@ -423,7 +486,7 @@ int main(int argc, char** argv) {
       ->type_name("DIR");
   measure->add_option("--jobs,-j", measure_options.jobs,
                       "Road users measured at a time (outputs do not depend on it; default: the number of cores)")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{256}))
+      ->check(integer_in(1, 256))
       ->type_name("N");
   measure->add_flag("--on-lanelets", measure_options.on_lanelets,
                     "Count only the room on the road: a maneuver whose footprint leaves the union of the file's "
@@ -439,13 +502,14 @@ int main(int argc, char** argv) {
       ->type_name("FILE.xml");
   replay->add_option("--agent", replay_options.agent,
                      "The road user to drive (default: the recorded ego of the file's planning problem)")
-      ->check(CLI::Range(std::uint32_t{1}, std::numeric_limits<std::uint32_t>::max()))
+      ->check(integer_in(1, std::numeric_limits<std::uint32_t>::max(),
+                         "the id of the one road user to drive (replay drives one; measure takes all), an integer"))
       ->type_name("ID");
   replay->add_option("--policy", replay_options.policy, "Forecast policy: adj (default), const:SECONDS or robust")
       ->type_name("adj|const:SECONDS|robust");
   replay->add_option("--desired-speed", replay_options.desired_speed_kmh,
                      "Its desired speed in km/h (default: its recorded speed at each moment)")
-      ->check(CLI::Range(0.0, 360.0))
+      ->check(number_in("km/h", 0.0, 360.0))
       ->type_name("KMH");
   replay->add_flag("--no-avoidance", replay_options.no_avoidance,
                    "Follow the recorded path without planning (the baseline)");

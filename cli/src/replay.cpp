@@ -1,5 +1,6 @@
 #include "mm/cli/replay.hpp"
 
+#include <filesystem>
 #include <string>
 
 #include "mm/cli/commands.hpp"
@@ -19,6 +20,9 @@ scenario_file::loaded_scenario replay_loaded(const cr::scenario& recording, cons
                                              const std::string& source) {
   scenario_file::loaded_scenario loaded;
   loaded.scenario = cr::replay_scenario(recording, options);
+  // Named after the file, as `measure` names its outputs (the library names it by the benchmark id,
+  // which need not be the file's name).
+  loaded.scenario.name = std::filesystem::path(source).stem().string();
   loaded.source = source;
   for (const cr::lanelet& lane : recording.lanelets) {
     // Bounds of unequal point counts (not written by the converters we know) are left undrawn.

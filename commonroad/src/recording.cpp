@@ -42,7 +42,7 @@ const obstacle& measured(const scenario& s, std::uint32_t agent) {
   const obstacle* o = find_obstacle(s, agent);
   const auto error = [&](const std::string& why) {
     return measure_error("road user " + std::to_string(agent) + ": " + why +
-                         "; the road users that can be measured are: " + measurable_road_users_text(s));
+                         "; the road users the planner can take the place of (measure, replay) are: " + measurable_road_users_text(s));
   };
   if (o == nullptr) throw error("no obstacle has this id");
   if (o->role == obstacle_role::static_obstacle) throw error("a static obstacle (" + o->type + ")");

@@ -143,6 +143,9 @@ scenario_file::load_options load_options_of(const std::optional<std::map<std::st
 }
 
 sim::run_options run_options_of(std::size_t jobs, bool map_columns, bool measure_cpu_time) {
+  // As `maneuvermap run --jobs`: at least one thread (the library reads 0 as 1; a caller who wrote 0
+  // more likely meant "every core", which it is not).
+  if (jobs < 1 || jobs > 256) throw py::value_error("jobs = " + std::to_string(jobs) + ": expected from 1 to 256 threads");
   sim::run_options options;
   options.jobs = jobs;
   options.map_columns = map_columns;

@@ -761,6 +761,11 @@ class mapper {
     const std::size_t close = open == std::string::npos ? open : error->find("\": ", open + 1);
     if (close != std::string::npos) {
       const std::string name = error->substr(open + 1, close - open - 1);
+      // A policy the command line gave every vehicle is the command line's error, not the file's.
+      if (options_.policy && error->find("planner.policy", close) == close + 3) {
+        throw scenario_error(ctx_.source, 0, 0, "--policy " + policy_name(*options_.policy),
+                             error->substr(close + 3) + " (for planning vehicle " + name + "; the simulator's field names)");
+      }
       for (std::size_t i = 0; i < agents_.size(); ++i) {
         if (agents_[i].name == name) {
           ctx_.fail(agents_[i].node.node, agents_[i].node.path + " \"" + name + "\"", error->substr(close + 3) +

@@ -80,7 +80,17 @@ TEST(maneuvermap, bad_option_values_exit_2) {
   const result policy = run("run s1-crossing --policy sideways", "bad_policy");
   EXPECT_EQ(policy.code, 2);
   EXPECT_TRUE(contains(policy.err, "--policy sideways: expected adj, const:SECONDS or robust")) << policy.err;
-  EXPECT_EQ(run("run s1-crossing --policy const:0.3", "off_grid_policy").code, 2);
+  const result off_grid = run("run s1-crossing --policy const:0.3", "off_grid_policy");
+  EXPECT_EQ(off_grid.code, 2);
+  EXPECT_TRUE(contains(off_grid.err, "builtin:s1-crossing: --policy const:0.3: planner.policy.constant_forecast_time = 0.3: "
+                                     "expected a forecast time on the grid"))
+      << off_grid.err;
+  const result jobs = run("run s1-crossing --jobs many", "bad_jobs");
+  EXPECT_EQ(jobs.code, 2);
+  EXPECT_TRUE(contains(jobs.err, "--jobs: expected an integer from 1 to 256, got many")) << jobs.err;
+  const result word_time = run("snapshot s1-crossing --time soon --agent A", "word_time");
+  EXPECT_EQ(word_time.code, 2);
+  EXPECT_TRUE(contains(word_time.err, "--time: expected a number of seconds, got soon")) << word_time.err;
   EXPECT_EQ(run("run s1-crossing --seed minus", "bad_seed").code, 2);
   // A negative seed is refused, not wrapped around to 2^64 − 5.
   const result negative_seed = run("run s1-crossing --seed -5", "negative_seed");

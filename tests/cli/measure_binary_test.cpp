@@ -159,7 +159,7 @@ TEST(maneuvermap_measure, bad_input_exits_2_with_a_message_that_says_what_was_wr
 
   const result missing = measure((dir / "no-such-file.xml").string(), dir);
   EXPECT_EQ(missing.code, 2);
-  EXPECT_TRUE(contains(missing.err, "no-such-file.xml")) << missing.err;
+  EXPECT_TRUE(contains(missing.err, "no-such-file.xml: cannot open the file: No such file or directory")) << missing.err;
 
   const result no_ego = measure(recording("ZAM_Tutorial-1_2_T-1") + " --out " + (dir / "run").string(), dir);
   EXPECT_EQ(no_ego.code, 2);
@@ -168,7 +168,7 @@ TEST(maneuvermap_measure, bad_input_exits_2_with_a_message_that_says_what_was_wr
 
   const result unknown = measure(recording("ZAM_Tutorial-1_2_T-1") + " --agent 999 --out " + (dir / "run").string(), dir);
   EXPECT_EQ(unknown.code, 2);
-  EXPECT_TRUE(contains(unknown.err, "road user 999: no obstacle has this id")) << unknown.err;
+  EXPECT_TRUE(contains(unknown.err, "ZAM_Tutorial-1_2_T-1.xml: road user 999: no obstacle has this id")) << unknown.err;
 
   const result pedestrian =
       measure(recording("OSC_PedestrianCollision-1_1_T-1") + " --agent 35 --out " + (dir / "run").string(), dir);
@@ -179,6 +179,16 @@ TEST(maneuvermap_measure, bad_input_exits_2_with_a_message_that_says_what_was_wr
     const result r = measure(recording("ZAM_Tutorial-1_2_T-1") + " " + option + " --out " + (dir / "run").string(), dir);
     EXPECT_EQ(r.code, 2) << option << ": " << r.err;
     EXPECT_TRUE(contains(r.err, "maneuvermap: ")) << option << ": " << r.err;
+  }
+  // Option values are named with what was expected, before any file is read.
+  const std::vector<std::pair<std::string, std::string>> messages = {
+      {"--policy const:0.3", "--policy const:0.3: config.policy.constant_forecast_time = 0.3: expected a forecast time on the grid"},
+      {"--jobs abc", "--jobs: expected an integer from 1 to 256, got abc"},
+      {recording("USA_Lanker-1_1_T-1") + " --agent 42", "--agent 42: an id names a road user of one file"}};
+  for (const auto& [option, message] : messages) {
+    const result r = measure(recording("ZAM_Tutorial-1_2_T-1") + " " + option + " --out " + (dir / "run").string(), dir);
+    EXPECT_EQ(r.code, 2) << option << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, message)) << option << ": " << r.err;
   }
 }
 

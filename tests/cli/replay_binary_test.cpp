@@ -70,7 +70,7 @@ TEST(maneuvermap_replay, bad_input_exits_2_with_a_message_that_says_what_was_wro
   EXPECT_TRUE(contains(no_ego.err, "give --agent ID, one of: 42, 44")) << no_ego.err;
   const result unknown = replay(recording("ZAM_Tutorial-1_2_T-1") + " --agent 999" + out, dir);
   EXPECT_EQ(unknown.code, 2);
-  EXPECT_TRUE(contains(unknown.err, "road user 999: no obstacle has this id")) << unknown.err;
+  EXPECT_TRUE(contains(unknown.err, "ZAM_Tutorial-1_2_T-1.xml: road user 999: no obstacle has this id")) << unknown.err;
   const result pedestrian = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --agent 35" + out, dir);
   EXPECT_EQ(pedestrian.code, 2);
   EXPECT_TRUE(contains(pedestrian.err, "a pedestrian")) << pedestrian.err;
@@ -83,7 +83,15 @@ TEST(maneuvermap_replay, bad_input_exits_2_with_a_message_that_says_what_was_wro
     EXPECT_TRUE(contains(bad.err, "maneuvermap: ")) << option << ": " << bad.err;
   }
   const result zero = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --agent 0" + out, dir);
-  EXPECT_TRUE(contains(zero.err, "--agent: Value 0 not in range 1 to 4294967295")) << zero.err;
+  EXPECT_TRUE(contains(zero.err, "--agent: expected the id of the one road user to drive (replay drives one; measure takes "
+                                 "all), an integer from 1 to 4294967295, got 0"))
+      << zero.err;
+  const result all = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --agent all" + out, dir);
+  EXPECT_TRUE(contains(all.err, "replay drives one; measure takes all")) << all.err;
+  const result off_grid = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --policy const:9" + out, dir);
+  EXPECT_TRUE(contains(off_grid.err, "--policy const:9: config.policy.constant_forecast_time = 9: expected a forecast time "
+                                     "on the grid"))
+      << off_grid.err;
 }
 
 }  // namespace

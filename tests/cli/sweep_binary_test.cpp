@@ -99,7 +99,7 @@ TEST(maneuvermap_sweep, a_bad_sweep_file_or_option_exits_2) {
   EXPECT_EQ(run("sweep no-such-sweep", "bad_name").code, 2);
   const result zero_jobs = run("sweep table1 --jobs 0", "bad_jobs");
   EXPECT_EQ(zero_jobs.code, 2);
-  EXPECT_TRUE(contains(zero_jobs.err, "--jobs: Value 0 not in range 1 to 256")) << zero_jobs.err;
+  EXPECT_TRUE(contains(zero_jobs.err, "--jobs: expected an integer from 1 to 256, got 0")) << zero_jobs.err;
   EXPECT_EQ(run("sweep table1 --repetitions 0", "bad_repetitions").code, 2);
 }
 

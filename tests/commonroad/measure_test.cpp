@@ -216,7 +216,7 @@ TEST(measure, pedestrians_static_obstacles_and_unknown_ids_cannot_be_measured_an
     } catch (const measure_error& e) {
       const std::string message = e.what();
       EXPECT_NE(message.find("road user " + std::to_string(id)), std::string::npos) << message;
-      EXPECT_NE(message.find("can be measured are: 1, 2, 4, 5"), std::string::npos) << message;
+      EXPECT_NE(message.find("the road users the planner can take the place of (measure, replay) are: 1, 2, 4, 5"), std::string::npos) << message;
     }
   }
   EXPECT_THROW(planning_input(s, of(4), 2), measure_error);  // car 4 appears at step 5

@@ -178,6 +178,8 @@ def test_run_takes_a_name_a_path_a_loaded_scenario_or_a_scenario_and_refuses_any
         mm.sim.run(42)  # type: ignore[arg-type]  # the wrong type on purpose: its message
     with pytest.raises(ValueError, match="apply when loading"):
         mm.sim.run(loaded, seed=3)
+    with pytest.raises(ValueError, match="jobs = 0: expected from 1 to 256 threads"):
+        mm.sim.run(loaded, jobs=0)
 
 
 def run_in_worker(name):

@@ -16,7 +16,7 @@ std::uint32_t default_replay_agent(const mm::commonroad::scenario& recording);
 
 /// The replay of `recording` (`mm::commonroad::replay_scenario`) as a loaded scenario that
 /// `run_scenario` runs and writes: its lanes drawn as roads (each lanelet's centre line, the mean of
-/// its bounds, and its mean width), `source` naming the file.
+/// its bounds, and its mean width), `source` naming the file and the scenario named after it (its stem).
 scenario_file::loaded_scenario replay_loaded(const mm::commonroad::scenario& recording,
                                              const mm::commonroad::replay_options& options, const std::string& source);
 
