@@ -278,20 +278,6 @@ void parse_agents(const std::vector<std::string>& texts, mm::cli::measure_settin
   }
 }
 
-/// Measures one file into `settings.out_dir` and prints its table; returns what it measured.
-mm::cli::measure_outcome measure_file(const std::string& file, const std::string& name,
-                                      const mm::cli::measure_settings& settings, bool plots) {
-  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(file);
-  const mm::cli::measure_outcome outcome = mm::cli::measure_recording(recording, name, settings);
-  std::cout << fmt::format("{}: CommonRoad {}, {} road users and obstacles, time step {} s; policy {}\n", name,
-                           recording.version, recording.obstacles.size(), mm::cli::fixed(recording.time_step, 3),
-                           sf::policy_name(settings.policy));
-  std::cout << mm::cli::measurement_table(outcome);
-  std::cout << "written to " << settings.out_dir.string() << "/\n";
-  if (plots) plot_into(settings.out_dir);
-  return outcome;
-}
-
 /// `maneuvermap measure FILE...`: one file into --out (default out/<name>); several, each into
 /// <out>/<name>/ (default out/measure) and one row per measured road user into
 /// <out>/measurements.csv.
@@ -302,51 +288,40 @@ int measure_command(const measure_command_options& o) {
   settings.jobs = o.jobs != 0 ? o.jobs : std::max(1U, std::thread::hardware_concurrency());
   settings.on_lanelets = o.on_lanelets;
   settings.progress = isatty(STDERR_FILENO) ? &std::cerr : nullptr;
-  std::vector<std::string> names;
-  for (const std::string& file : o.files) {
-    const std::string name = std::filesystem::path(file).stem().string();
-    if (const auto same = std::find(names.begin(), names.end(), name); same != names.end()) {
-      throw mm::cli::input_error(fmt::format("{} and {}: two files named {}; each file's outputs go to a folder of its name",
-                                             o.files[static_cast<std::size_t>(same - names.begin())], file, name));
-    }
-    names.push_back(name);
-  }
-  if (o.files.size() == 1) {
-    settings.out_dir = o.out.empty() ? std::filesystem::path("out") / names.front() : std::filesystem::path(o.out);
-    try {
-      measure_file(o.files.front(), names.front(), settings, o.plots);
-    } catch (const mm::cli::input_error& e) {
-      throw mm::cli::input_error(o.files.front() + ": " + e.what());
-    } catch (const mm::commonroad::measure_error& e) {
-      throw mm::commonroad::measure_error(o.files.front() + ": " + e.what());
-    }
-    return exit_ok;
-  }
-  if (!settings.agents.empty()) {
+  if (o.files.size() > 1 && !settings.agents.empty()) {
     throw mm::cli::input_error("--agent " + std::to_string(settings.agents.front()) +
                                ": an id names a road user of one file; with several files give --agent all, or no "
                                "--agent for each file's recorded ego");
   }
   const std::filesystem::path out = o.out.empty() ? std::filesystem::path("out") / "measure" : std::filesystem::path(o.out);
-  std::vector<mm::cli::measured_file> measured;
-  for (std::size_t i = 0; i < o.files.size(); ++i) {
-    settings.out_dir = out / names[i];
-    try {
-      measured.push_back({names[i], measure_file(o.files[i], names[i], settings, o.plots)});
-    } catch (const mm::cli::input_error& e) {
-      // Ids name road users of one file: with several, only --agent all can choose for each.
-      const bool no_ego = !settings.every_road_user;
-      throw mm::cli::input_error(o.files[i] + ": " + e.what() +
-                                 (no_ego ? "; with several files, --agent all measures every road user of each" : ""));
-    } catch (const mm::commonroad::measure_error& e) {
-      throw mm::commonroad::measure_error(o.files[i] + ": " + e.what());
+  std::vector<mm::cli::measure_request> requests;
+  for (const std::string& file : o.files) {
+    const std::string name = std::filesystem::path(file).stem().string();
+    const auto same = std::find_if(requests.begin(), requests.end(), [&](const auto& r) { return r.name == name; });
+    if (same != requests.end()) {
+      throw mm::cli::input_error(fmt::format("{} and {}: two files named {}; each file's outputs go to a folder of its name",
+                                             same->file, file, name));
     }
+    const std::filesystem::path dir = o.files.size() == 1 ? (o.out.empty() ? std::filesystem::path("out") / name : out)
+                                                          : out / name;
+    requests.push_back({file, name, dir});
   }
+  const std::vector<mm::cli::measured_file> measured = mm::cli::measure_files(requests, settings);
+  for (std::size_t k = 0; k < measured.size(); ++k) {
+    const mm::cli::measured_file& f = measured[k];
+    std::cout << fmt::format("{}: CommonRoad {}, {} road users and obstacles, time step {} s; policy {}\n", f.name,
+                             f.commonroad_version, f.obstacles, mm::cli::fixed(f.time_step, 3),
+                             sf::policy_name(settings.policy));
+    std::cout << mm::cli::measurement_table(f);
+    std::cout << "written to " << requests[k].out_dir.string() << "/\n";
+    if (o.plots) plot_into(requests[k].out_dir);
+  }
+  if (o.files.size() == 1) return exit_ok;
   mm::cli::output::write_text(out / "measurements.csv", mm::cli::measurements_csv(measured));
   std::cout << fmt::format("{} files, {} road users: {}\n", measured.size(),
                            std::accumulate(measured.begin(), measured.end(), std::size_t{0},
                                            [](std::size_t n, const mm::cli::measured_file& f) {
-                                             return n + f.outcome.measurements.size();
+                                             return n + f.road_users.size();
                                            }),
                            (out / "measurements.csv").string());
   return exit_ok;

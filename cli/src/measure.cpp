@@ -19,6 +19,7 @@
 #include "output_files.hpp"
 #include "mm/cli/commands.hpp"
 #include "mm/drivable_area.hpp"
+#include "mm/commonroad/reader.hpp"
 #include "mm/scenario_file/loader.hpp"
 
 namespace mm::cli {
@@ -84,45 +85,14 @@ json scene_json(const cr::scenario& s, const std::string& name, const std::vecto
           {"drivable_area", output::drivable_area_json(area)}};
 }
 
-/// Per measured road user: the step of least room and how often the recorded maneuver was unsafe.
-struct measurement_summary {
-  std::size_t steps = 0;
-  double least_room = 1.0;
-  double least_room_time = 0.0;
-  std::size_t unsafe_steps = 0;  ///< planning mode not nominal: what it did was not safe (spec §8)
-  double earliest_ttc = std::numeric_limits<double>::infinity();
-  double earliest_ttc_time = 0.0;
-};
-
-measurement_summary summarize(const cr::measurement& m) {
-  measurement_summary sum;
-  sum.steps = m.steps.size();
-  for (const cr::measured_step& step : m.steps) {
-    const double room = cr::room(step.result);
-    if (&step == &m.steps.front() || room < sum.least_room) {
-      sum.least_room = room;
-      sum.least_room_time = step.time;
-    }
-    if (step.result.mode != mm::planning_mode::nominal) ++sum.unsafe_steps;
-    if (step.result.time_to_collision < sum.earliest_ttc) {
-      sum.earliest_ttc = step.result.time_to_collision;
-      sum.earliest_ttc_time = step.time;
-    }
-  }
-  return sum;
-}
-
 json summary_json(const cr::scenario& s, const std::string& name, const measure_settings& settings,
-                  const measure_outcome& outcome) {
+                  const std::vector<road_user_summary>& road_users) {
   const auto [first, last] = step_range(s);
   json vehicles = json::array();
-  for (const cr::measurement& m : outcome.measurements) {
-    const measurement_summary sum = summarize(m);
-    const auto on_road = std::count_if(m.steps.begin(), m.steps.end(),
-                                       [](const cr::measured_step& step) { return step.result.on_drivable_area; });
-    vehicles.push_back({{"agent", name_of(m.agent)},
+  for (const road_user_summary& sum : road_users) {
+    vehicles.push_back({{"agent", name_of(sum.agent)},
                         {"steps", sum.steps},
-                        {"steps_on_drivable_area", on_road},
+                        {"steps_on_drivable_area", sum.steps_on_drivable_area},
                         {"least_room", rounded(sum.least_room)},
                         {"least_room_time_s", rounded(sum.least_room_time)},
                         {"unsafe_steps", sum.unsafe_steps},
@@ -200,51 +170,45 @@ std::optional<std::uint32_t> planning_problem_ego(const cr::scenario& s) {
   return std::nullopt;
 }
 
-measure_outcome measure_recording(const cr::scenario& s, const std::string& name, const measure_settings& settings) {
-  const std::vector<std::uint32_t> agents = road_users_to_measure(s, settings);
-  measure_outcome outcome;
-  outcome.measurements.resize(agents.size());
-  // Road users are independent: `jobs` threads take them in turn, each result in its place. The
-  // first error (in road-user order) is rethrown once all threads are done.
-  std::vector<std::exception_ptr> errors(agents.size());
-  std::atomic<std::size_t> next{0};
-  std::mutex progress_mutex;
-  std::size_t done = 0;
-  std::shared_ptr<const drivable_area> area;
-  if (settings.on_lanelets) {
-    try {
-      area = std::make_shared<const drivable_area>(cr::lanelet_polygons(s));
-    } catch (const std::invalid_argument& e) {
-      throw input_error(std::string("--on-lanelets: ") + e.what());
+road_user_summary summarize(const cr::measurement& m) {
+  road_user_summary sum;
+  sum.agent = m.agent;
+  sum.steps = m.steps.size();
+  for (const cr::measured_step& step : m.steps) {
+    const double room = cr::room(step.result);
+    if (&step == &m.steps.front() || room < sum.least_room) {
+      sum.least_room = room;
+      sum.least_room_time = step.time;
+    }
+    if (step.result.mode != mm::planning_mode::nominal) ++sum.unsafe_steps;
+    if (step.result.on_drivable_area) ++sum.steps_on_drivable_area;
+    if (step.result.time_to_collision < sum.earliest_ttc) {
+      sum.earliest_ttc = step.result.time_to_collision;
+      sum.earliest_ttc_time = step.time;
     }
   }
-  const auto work = [&] {
-    cr::measure_options options;
-    options.config.policy = settings.policy;
-    options.drivable_area = area;
-    for (std::size_t i = next++; i < agents.size(); i = next++) {
-      options.agent = agents[i];
-      try {
-        outcome.measurements[i] = cr::measure(s, options);
-      } catch (...) {
-        errors[i] = std::current_exception();
-      }
-      if (settings.progress != nullptr) {
-        const std::lock_guard lock(progress_mutex);
-        *settings.progress << fmt::format("\r{}: {} / {} road users measured", name, ++done, agents.size()) << std::flush;
-      }
-    }
-  };
-  {
-    std::vector<std::jthread> threads;
-    for (std::size_t j = 1; j < std::min(settings.jobs, agents.size()); ++j) threads.emplace_back(work);
-    work();
-  }
-  if (settings.progress != nullptr) *settings.progress << "\r\033[K" << std::flush;
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
-  }
+  return sum;
+}
 
+namespace {
+
+/// The road constraint of `--on-lanelets`: the union of the file's lanelets; none without it.
+std::shared_ptr<const drivable_area> drivable_area_of(const cr::scenario& s, const measure_settings& settings) {
+  if (!settings.on_lanelets) return nullptr;
+  try {
+    return std::make_shared<const drivable_area>(cr::lanelet_polygons(s));
+  } catch (const std::invalid_argument& e) {
+    throw input_error(std::string("--on-lanelets: ") + e.what());
+  }
+}
+
+/// Writes the six files of one measured recording into `out_dir`; returns their paths.
+std::vector<std::string> write_measurement(const cr::scenario& s, const std::string& name,
+                                           const std::filesystem::path& out_dir, const measure_settings& settings,
+                                           std::span<const cr::measurement> measurements,
+                                           const std::vector<road_user_summary>& road_users,
+                                           const std::vector<std::uint32_t>& agents,
+                                           const std::shared_ptr<const drivable_area>& area) {
   // map.csv and decisions.csv by time, then road user, as `maneuvermap run` writes them.
   struct row_key {
     double time;
@@ -252,19 +216,17 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
     std::size_t step;
   };
   std::vector<row_key> keys;
-  for (std::size_t m = 0; m < outcome.measurements.size(); ++m) {
-    for (std::size_t k = 0; k < outcome.measurements[m].steps.size(); ++k) {
-      keys.push_back({outcome.measurements[m].steps[k].time, m, k});
-    }
+  for (std::size_t m = 0; m < measurements.size(); ++m) {
+    for (std::size_t k = 0; k < measurements[m].steps.size(); ++k) keys.push_back({measurements[m].steps[k].time, m, k});
   }
   std::stable_sort(keys.begin(), keys.end(), [](const row_key& a, const row_key& b) { return a.time < b.time; });
   std::string map = "t,agent,tau,mi_brake,mi_accel,excluded\n";
   std::string decisions = "t,agent,tau_bar,family,mode,ttc,cpu_us,robust\n";
   std::string rooms = "t,agent,speed,room,mode,ttc\n";
   for (const row_key& key : keys) {
-    const cr::measured_step& step = outcome.measurements[key.measurement].steps[key.step];
+    const cr::measured_step& step = measurements[key.measurement].steps[key.step];
     const plan_result& r = step.result;
-    const std::string prefix = fixed(step.time) + ',' + name_of(outcome.measurements[key.measurement].agent) + ',';
+    const std::string prefix = fixed(step.time) + ',' + name_of(measurements[key.measurement].agent) + ',';
     for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
       map += prefix;
       append_number(map, r.forecast_times[i], ',');
@@ -282,27 +244,183 @@ measure_outcome measure_recording(const cr::scenario& s, const std::string& name
     rooms += std::string(mm::to_string(r.mode)) + ',' + fixed(r.time_to_collision) + '\n';
   }
 
-  std::filesystem::create_directories(settings.out_dir);
+  std::vector<std::string> written;
+  std::filesystem::create_directories(out_dir);
   const auto write = [&](const char* file, const std::string& text) {
-    output::write_text(settings.out_dir / file, text);
-    outcome.files.push_back((settings.out_dir / file).string());
+    output::write_text(out_dir / file, text);
+    written.push_back((out_dir / file).string());
   };
   write("trajectories.csv", trajectories_csv(s));
   write("map.csv", map);
   write("decisions.csv", decisions);
-  write("summary.json", summary_json(s, name, settings, outcome).dump(2) + "\n");
+  write("summary.json", summary_json(s, name, settings, road_users).dump(2) + "\n");
   write("scene.json", scene_json(s, name, agents, area).dump() + "\n");
   write("rooms.csv", rooms);
-  return outcome;
+  return written;
+}
+
+/// One file in the pool of `measure_files`: its road users, and while some are measured, the
+/// recording, its drivable area and their measurements.
+struct file_work {
+  const measure_request* request = nullptr;
+  std::vector<std::uint32_t> agents;
+  std::size_t first_task = 0;  ///< its road users are tasks first_task, first_task + 1, ...
+  std::mutex mutex;            ///< guards the loading and release of `recording` and `area`
+  std::shared_ptr<const cr::scenario> recording;
+  std::shared_ptr<const drivable_area> area;
+  std::vector<cr::measurement> measurements;
+  std::atomic<std::size_t> remaining{0};
+  std::exception_ptr write_error;
+  measured_file result;
+};
+
+/// "FILE: why" of an error found before measuring (a read_error names the file itself).
+std::string unmeasurable(const measure_request& request) {
+  try {
+    throw;
+  } catch (const cr::read_error& e) {
+    return e.what();
+  } catch (const std::exception& e) {
+    return request.file + ": " + e.what();
+  }
+}
+
+}  // namespace
+
+std::vector<measured_file> measure_files(std::span<const measure_request> requests, const measure_settings& settings) {
+  // Every file read and checked before anything is measured: all the files that cannot be, at once.
+  std::vector<std::unique_ptr<file_work>> work;
+  std::vector<std::string> problems;
+  bool no_ego = false;
+  for (const measure_request& request : requests) {
+    auto& f = *work.emplace_back(std::make_unique<file_work>());
+    f.request = &request;
+    try {
+      auto recording = std::make_shared<const cr::scenario>(cr::read_scenario(request.file));
+      if (settings.agents.empty() && !settings.every_road_user && !planning_problem_ego(*recording) &&
+          requests.size() > 1) {
+        // One line each; the hint once, below.
+        no_ego = true;
+        problems.push_back(request.file + ": no obstacle of the file replays the ego of its planning problem");
+        continue;
+      }
+      f.agents = road_users_to_measure(*recording, settings);
+      for (const std::uint32_t agent : f.agents) cr::require_measurable(*recording, agent);
+      auto area = drivable_area_of(*recording, settings);
+      // The first files are measured first: those the threads start on are kept, not read again.
+      if (work.size() <= settings.jobs) {
+        f.recording = std::move(recording);
+        f.area = std::move(area);
+      }
+    } catch (const std::exception&) {
+      problems.push_back(unmeasurable(request));
+    }
+  }
+  if (problems.size() == 1 && requests.size() == 1) throw input_error(problems.front());
+  if (!problems.empty()) {
+    std::string message = fmt::format("{} of the {} files cannot be measured; nothing was measured:", problems.size(),
+                                      requests.size());
+    for (const std::string& p : problems) message += "\n  " + p;
+    if (no_ego) message += "\nwith several files, --agent all measures every road user of each";
+    throw input_error(message);
+  }
+
+  // One pool over the road users of every file, file after file.
+  struct task {
+    std::size_t file;
+    std::size_t road_user;
+  };
+  std::vector<task> tasks;
+  for (std::size_t k = 0; k < work.size(); ++k) {
+    file_work& f = *work[k];
+    f.first_task = tasks.size();
+    f.measurements.resize(f.agents.size());
+    f.remaining = f.agents.size();
+    for (std::size_t i = 0; i < f.agents.size(); ++i) tasks.push_back({k, i});
+  }
+  std::vector<std::exception_ptr> errors(tasks.size());
+  std::atomic<std::size_t> next{0};
+  std::mutex progress_mutex;
+  std::size_t done = 0;
+  const auto finish = [&](file_work& f) {
+    // Its last road user is done: its files written (unless one failed), then it is released.
+    const bool failed = std::any_of(errors.begin() + static_cast<std::ptrdiff_t>(f.first_task),
+                                    errors.begin() + static_cast<std::ptrdiff_t>(f.first_task + f.agents.size()),
+                                    [](const std::exception_ptr& e) { return e != nullptr; });
+    if (!failed) {
+      try {
+        measured_file& r = f.result;
+        r.name = f.request->name;
+        r.commonroad_version = f.recording->version;
+        r.obstacles = f.recording->obstacles.size();
+        r.time_step = f.recording->time_step;
+        for (const cr::measurement& m : f.measurements) r.road_users.push_back(summarize(m));
+        r.files = write_measurement(*f.recording, r.name, f.request->out_dir, settings, f.measurements, r.road_users,
+                                    f.agents, f.area);
+      } catch (...) {
+        f.write_error = std::current_exception();
+      }
+    }
+    const std::lock_guard lock(f.mutex);
+    f.recording.reset();
+    f.area.reset();
+    std::vector<cr::measurement>().swap(f.measurements);
+  };
+  const auto worker = [&] {
+    cr::measure_options options;
+    options.config.policy = settings.policy;
+    for (std::size_t t = next++; t < tasks.size(); t = next++) {
+      file_work& f = *work[tasks[t].file];
+      try {
+        {
+          const std::lock_guard lock(f.mutex);
+          if (!f.recording) {
+            f.recording = std::make_shared<const cr::scenario>(cr::read_scenario(f.request->file));
+            f.area = drivable_area_of(*f.recording, settings);
+          }
+        }
+        options.agent = f.agents[tasks[t].road_user];
+        options.drivable_area = f.area;
+        f.measurements[tasks[t].road_user] = cr::measure(*f.recording, options);
+      } catch (const cr::measure_error& e) {
+        errors[t] = std::make_exception_ptr(cr::measure_error(f.request->file + ": " + e.what()));
+      } catch (const input_error& e) {
+        errors[t] = std::make_exception_ptr(input_error(f.request->file + ": " + e.what()));
+      } catch (...) {
+        errors[t] = std::current_exception();
+      }
+      if (settings.progress != nullptr) {
+        const std::lock_guard lock(progress_mutex);
+        *settings.progress << fmt::format("\r{}: {} / {} road users measured", f.request->name, ++done, tasks.size())
+                           << std::flush;
+      }
+      if (--f.remaining == 0) finish(f);
+    }
+  };
+  {
+    std::vector<std::jthread> threads;
+    for (std::size_t j = 1; j < std::min(settings.jobs, tasks.size()); ++j) threads.emplace_back(worker);
+    worker();
+  }
+  if (settings.progress != nullptr) *settings.progress << "\r\033[K" << std::flush;
+  // The first error, in the order of the files and their road users.
+  std::vector<measured_file> results;
+  for (const auto& f : work) {
+    for (std::size_t i = 0; i < f->agents.size(); ++i) {
+      if (errors[f->first_task + i]) std::rethrow_exception(errors[f->first_task + i]);
+    }
+    if (f->write_error) std::rethrow_exception(f->write_error);
+    results.push_back(std::move(f->result));
+  }
+  return results;
 }
 
 std::string measurements_csv(std::span<const measured_file> files) {
   std::string text = "file,agent,steps,least_room,least_room_time_s,unsafe_steps,earliest_ttc_s,earliest_ttc_time_s\n";
   for (const measured_file& f : files) {
-    for (const cr::measurement& m : f.outcome.measurements) {
-      const measurement_summary sum = summarize(m);
+    for (const road_user_summary& sum : f.road_users) {
       const bool ttc = std::isfinite(sum.earliest_ttc);
-      text += fmt::format("{},{},{},{},{},{},{},{}\n", output::csv_field(f.name), m.agent, sum.steps, fixed(sum.least_room),
+      text += fmt::format("{},{},{},{},{},{},{},{}\n", output::csv_field(f.name), sum.agent, sum.steps, fixed(sum.least_room),
                           fixed(sum.least_room_time), sum.unsafe_steps,
                           ttc ? fixed(sum.earliest_ttc) : "", ttc ? fixed(sum.earliest_ttc_time) : "");
     }
@@ -310,13 +428,12 @@ std::string measurements_csv(std::span<const measured_file> files) {
   return text;
 }
 
-std::string measurement_table(const measure_outcome& outcome) {
+std::string measurement_table(const measured_file& file) {
   std::string text = fmt::format("{:>10}  {:>5}  {:>10}  {:>8}  {:>12}  {:>8}  {:>8}\n", "road user", "steps",
                                  "least room", "at t [s]", "unsafe steps", "min TTC", "at t [s]");
-  for (const cr::measurement& m : outcome.measurements) {
-    const measurement_summary sum = summarize(m);
+  for (const road_user_summary& sum : file.road_users) {
     const bool ttc = std::isfinite(sum.earliest_ttc);
-    text += fmt::format("{:>10}  {:>5}  {:>10}  {:>8}  {:>12}  {:>8}  {:>8}\n", m.agent, sum.steps,
+    text += fmt::format("{:>10}  {:>5}  {:>10}  {:>8}  {:>12}  {:>8}  {:>8}\n", sum.agent, sum.steps,
                         fixed(sum.least_room, 3), fixed(sum.least_room_time, 2), sum.unsafe_steps,
                         ttc ? fixed(sum.earliest_ttc, 2) : "-", ttc ? fixed(sum.earliest_ttc_time, 2) : "-");
   }

@@ -117,6 +117,8 @@ std::vector<std::uint32_t> measurable_road_users(const scenario& s) {
   return ids;
 }
 
+void require_measurable(const scenario& s, std::uint32_t agent) { static_cast<void>(measured(s, agent)); }
+
 std::string measurable_road_users_text(const scenario& s) {
   constexpr std::size_t listed = 20;
   const std::vector<std::uint32_t> ids = measurable_road_users(s);

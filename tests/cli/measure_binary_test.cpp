@@ -129,13 +129,20 @@ TEST(maneuvermap_measure, several_files_go_each_into_a_folder_of_its_name_and_in
   const std::string summary = read_file(dir / "alone/summary.json");
   EXPECT_TRUE(contains(summary, "\"unsafe_steps\": " + rows[2][5])) << summary;
 
-  // Without --agent each file's recorded ego; a file without one stops the command, named.
-  const result no_ego = measure(pedestrian + " " + tutorial + " --out " + (dir / "egos").string(), dir);
+  // Without --agent each file's recorded ego. Every file is checked before anything is measured:
+  // each one that cannot be is named, and nothing is written.
+  const std::string tjunction = recording("ZAM_Intersection-1_1_T-1");
+  const result no_ego =
+      measure(pedestrian + " " + tutorial + " " + tjunction + " " + (dir / "no-such-file.xml").string() + " --out " +
+                  (dir / "egos").string(),
+              dir);
   EXPECT_EQ(no_ego.code, 2);
+  EXPECT_TRUE(contains(no_ego.err, "3 of the 4 files cannot be measured; nothing was measured:\n")) << no_ego.err;
   EXPECT_TRUE(contains(no_ego.err, "ZAM_Tutorial-1_2_T-1.xml: no obstacle of the file replays the ego")) << no_ego.err;
+  EXPECT_TRUE(contains(no_ego.err, "ZAM_Intersection-1_1_T-1.xml: no obstacle of the file replays the ego")) << no_ego.err;
+  EXPECT_TRUE(contains(no_ego.err, "no-such-file.xml: cannot open the file")) << no_ego.err;
   EXPECT_TRUE(contains(no_ego.err, "with several files, --agent all measures every road user of each")) << no_ego.err;
-  EXPECT_TRUE(std::filesystem::is_regular_file(dir / "egos/OSC_PedestrianCollision-1_1_T-1/map.csv"));
-  EXPECT_FALSE(std::filesystem::exists(dir / "egos/measurements.csv"));
+  EXPECT_FALSE(std::filesystem::exists(dir / "egos")) << "nothing is measured when a file cannot be";
 
   const result twice = measure(tutorial + " " + tutorial + " --agent all --out " + (dir / "twice").string(), dir);
   EXPECT_EQ(twice.code, 2);
@@ -148,6 +155,25 @@ TEST(maneuvermap_measure, several_files_go_each_into_a_folder_of_its_name_and_in
                                 dir);
   EXPECT_EQ(broken.code, 2);
   EXPECT_TRUE(contains(broken.err, "no-such-file.xml")) << broken.err;
+}
+
+TEST(maneuvermap_measure, several_files_on_any_number_of_threads_give_the_same_bytes) {
+  // The road users of all the files are measured by one pool of threads, file after file.
+  const temp_dir dir("measure_several_jobs");
+  const std::string files = recording("ZAM_Tutorial-1_2_T-1") + " " + recording("OSC_PedestrianCollision-1_1_T-1") +
+                            " " + recording("ZAM_Intersection-1_1_T-1") + " --agent all";
+  ASSERT_EQ(measure(files + " --jobs 1 --out " + (dir / "one").string(), dir).code, 0);
+  const result three = measure(files + " --jobs 3 --out " + (dir / "three").string(), dir);
+  ASSERT_EQ(three.code, 0) << three.err;
+  EXPECT_TRUE(contains(three.out, "3 files, 5 road users")) << three.out;
+  std::size_t compared = 0;
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir / "one")) {
+    if (!entry.is_regular_file()) continue;
+    const std::filesystem::path relative = std::filesystem::relative(entry.path(), dir / "one");
+    EXPECT_EQ(read_file(entry.path()), read_file(dir / "three" / relative)) << relative;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 3U * 6U + 1U) << "six files per recording and measurements.csv";
 }
 
 TEST(maneuvermap_measure, bad_input_exits_2_with_a_message_that_says_what_was_wrong) {

@@ -74,6 +74,10 @@ maneuver recorded_maneuver(const obstacle& o, std::size_t index, double dt);
 /// The dynamic obstacles that can be measured: every one that is not a pedestrian, in file order.
 std::vector<std::uint32_t> measurable_road_users(const scenario& s);
 
+/// Throws `measure_error` saying why road user `agent` cannot be measured or replayed (no obstacle
+/// has the id, a static obstacle, a pedestrian), with the ids that can; returns when it can.
+void require_measurable(const scenario& s, std::uint32_t agent);
+
 /// `measurable_road_users(s)` for a message that asks for a road user: the first 20 ids,
 /// comma-separated, then "… (N in all)" when there are more; "none" when there is none.
 std::string measurable_road_users_text(const scenario& s);
