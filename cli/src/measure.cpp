@@ -372,16 +372,18 @@ std::vector<measured_file> measure_files(std::span<const measure_request> reques
     for (std::size_t t = next++; t < tasks.size(); t = next++) {
       file_work& f = *work[tasks[t].file];
       try {
+        std::shared_ptr<const cr::scenario> recording;
         {
           const std::lock_guard lock(f.mutex);
           if (!f.recording) {
             f.recording = std::make_shared<const cr::scenario>(cr::read_scenario(f.request->file));
             f.area = drivable_area_of(*f.recording, settings);
           }
+          recording = f.recording;
+          options.drivable_area = f.area;
         }
         options.agent = f.agents[tasks[t].road_user];
-        options.drivable_area = f.area;
-        f.measurements[tasks[t].road_user] = cr::measure(*f.recording, options);
+        f.measurements[tasks[t].road_user] = cr::measure(*recording, options);
       } catch (const cr::measure_error& e) {
         errors[t] = std::make_exception_ptr(cr::measure_error(f.request->file + ": " + e.what()));
       } catch (const input_error& e) {
