@@ -19,18 +19,13 @@ namespace {
 /// h_n = l|n·x| + w|n·y| and h_e = l|e·x| + w|e·y| are its half extents along n and e, its nearest
 /// point to the line is nearest to the segment too: the distance is |n·(c − a)| − h_n.
 double rectangle_signed_distance(const placed_footprint& f, const segment& s) {
-  {
-    const vec2 along = s.b - s.a;
-    const double length = norm(along);
-    if (length > 0.0) {
-      const vec2 e = (1.0 / length) * along;
-      const vec2 d = f.centre - s.a;
-      const double offset = std::abs(cross(e, d));
-      const double h_n = f.half_length * std::abs(cross(e, f.axis)) + f.half_width * std::abs(dot(e, f.axis));
-      const double h_e = f.half_length * std::abs(dot(e, f.axis)) + f.half_width * std::abs(cross(e, f.axis));
-      const double x = dot(e, d);
-      if (offset >= h_n && x >= h_e && x <= length - h_e) return offset - h_n - f.radius;
-    }
+  if (const segment_line line(s); line.length > 0.0) {
+    const vec2 e = line.direction;
+    const double h_e = f.half_length * std::abs(dot(e, f.axis)) + f.half_width * std::abs(cross(e, f.axis));
+    const double x = dot(e, f.centre - s.a);
+    // |n·(c − a)| − h_n − radius, the radius 0 for a rectangle.
+    const double gap = line_distance_bound(f, line);
+    if (gap + f.radius >= 0.0 && x >= h_e && x <= line.length - h_e) return gap;
   }
   const auto local = [&](vec2 p) {
     const vec2 d = p - f.centre;
@@ -269,10 +264,8 @@ double signed_distance_reference(const placed_footprint& f, const segment& s) {
   return signed_distance(f, edge);
 }
 
-segment_line::segment_line(const segment& s) : a(s.a) {
-  const vec2 along = s.b - s.a;
-  const double length = norm(along);
-  if (length > 0.0) direction = (1.0 / length) * along;
+segment_line::segment_line(const segment& s) : a(s.a), length(norm(s.b - s.a)) {
+  if (length > 0.0) direction = (1.0 / length) * (s.b - s.a);
 }
 
 double line_distance_bound(const placed_footprint& f, const segment_line& line) {

@@ -97,11 +97,12 @@ class drivable_area {
 /// placements whose points are no more than d apart.
 double signed_distance(const placed_footprint& f, const segment& s);
 
-/// A segment's line, for `line_distance_bound`: a point of it and its unit direction (zero for a
-/// point segment, which has no line).
+/// A segment's line, for `line_distance_bound`: its start, its unit direction (zero for a point
+/// segment, which has no line) and its length [m].
 struct segment_line {
   vec2 a;
   vec2 direction;
+  double length = 0.0;
   explicit segment_line(const segment& s);
 };
 
