@@ -156,7 +156,10 @@ std::vector<std::uint32_t> road_users_to_measure(const cr::scenario& s, const me
     if (all.empty()) throw input_error("--agent all: the file has no road user that can be measured (no vehicle moves in it)");
     return all;
   }
-  if (!settings.agents.empty()) return settings.agents;
+  if (!settings.agents.empty()) {
+    for (const std::uint32_t agent : settings.agents) cr::require_measurable(s, agent);
+    return settings.agents;
+  }
   if (const auto ego = planning_problem_ego(s)) return {*ego};
   throw input_error("no obstacle of the file replays the ego of its planning problem; choose the road user to measure "
                     "with --agent ID (or --agent all); the road users that can be measured are: " +
@@ -207,7 +210,6 @@ std::vector<std::string> write_measurement(const cr::scenario& s, const std::str
                                            const std::filesystem::path& out_dir, const measure_settings& settings,
                                            std::span<const cr::measurement> measurements,
                                            const std::vector<road_user_summary>& road_users,
-                                           const std::vector<std::uint32_t>& agents,
                                            const std::shared_ptr<const drivable_area>& area) {
   // map.csv and decisions.csv by time, then road user, as `maneuvermap run` writes them.
   struct row_key {
@@ -254,7 +256,9 @@ std::vector<std::string> write_measurement(const cr::scenario& s, const std::str
   write("map.csv", map);
   write("decisions.csv", decisions);
   write("summary.json", summary_json(s, name, settings, road_users).dump(2) + "\n");
-  write("scene.json", scene_json(s, name, agents, area).dump() + "\n");
+  std::vector<std::uint32_t> measured;
+  for (const road_user_summary& sum : road_users) measured.push_back(sum.agent);
+  write("scene.json", scene_json(s, name, measured, area).dump() + "\n");
   write("rooms.csv", rooms);
   return written;
 }
@@ -305,7 +309,6 @@ std::vector<measured_file> measure_files(std::span<const measure_request> reques
         continue;
       }
       f.agents = road_users_to_measure(*recording, settings);
-      for (const std::uint32_t agent : f.agents) cr::require_measurable(*recording, agent);
       auto area = drivable_area_of(*recording, settings);
       // The first files are measured first: those the threads start on are kept, not read again.
       if (work.size() <= settings.jobs) {
@@ -356,7 +359,7 @@ std::vector<measured_file> measure_files(std::span<const measure_request> reques
         r.time_step = f.recording->time_step;
         for (const cr::measurement& m : f.measurements) r.road_users.push_back(summarize(m));
         r.files = write_measurement(*f.recording, r.name, f.request->out_dir, settings, f.measurements, r.road_users,
-                                    f.agents, f.area);
+                                    f.area);
       } catch (...) {
         f.write_error = std::current_exception();
       }
