@@ -77,39 +77,34 @@ TEST(maneuvermap, an_unknown_scenario_exits_2_and_suggests_a_built_in) {
 }
 
 TEST(maneuvermap, bad_option_values_exit_2) {
-  const result policy = run("run s1-crossing --policy sideways", "bad_policy");
-  EXPECT_EQ(policy.code, 2);
-  EXPECT_TRUE(contains(policy.err, "--policy sideways: expected adj, const:SECONDS or robust")) << policy.err;
-  const result off_grid = run("run s1-crossing --policy const:0.3", "off_grid_policy");
-  EXPECT_EQ(off_grid.code, 2);
-  EXPECT_TRUE(contains(off_grid.err, "builtin:s1-crossing: --policy const:0.3: planner.policy.constant_forecast_time = 0.3: "
-                                     "expected a forecast time on the grid"))
-      << off_grid.err;
-  const result jobs = run("run s1-crossing --jobs many", "bad_jobs");
-  EXPECT_EQ(jobs.code, 2);
-  EXPECT_TRUE(contains(jobs.err, "--jobs: expected an integer from 1 to 256, got many")) << jobs.err;
-  const result word_time = run("snapshot s1-crossing --time soon --agent A", "word_time");
-  EXPECT_EQ(word_time.code, 2);
-  EXPECT_TRUE(contains(word_time.err, "--time: expected a number of seconds, got soon")) << word_time.err;
-  EXPECT_EQ(run("run s1-crossing --seed minus", "bad_seed").code, 2);
-  // A negative seed is refused, not wrapped around to 2^64 − 5.
-  const result negative_seed = run("run s1-crossing --seed -5", "negative_seed");
-  EXPECT_EQ(negative_seed.code, 2);
-  EXPECT_TRUE(contains(negative_seed.err, "expected an integer from 0 to 18446744073709551615, got -5"))
-      << negative_seed.err;
-  EXPECT_EQ(run("run s1-crossing --set a_kmh", "bad_set").code, 2);
-  const result unknown = run("run s1-crossing --set speed_kmh=3", "unknown_parameter");
-  EXPECT_EQ(unknown.code, 2);
-  EXPECT_TRUE(contains(unknown.err, "--set speed_kmh: unknown parameter")) << unknown.err;
-  EXPECT_EQ(run("snapshot s1-crossing --time 9 --agent A", "late_snapshot").code, 2);
-  const result not_a_time = run("snapshot s1-crossing --time nan --agent A", "nan_snapshot");
-  EXPECT_EQ(not_a_time.code, 2);
-  EXPECT_TRUE(contains(not_a_time.err, "--time nan: expected a time from 0 to the duration 8.000 s")) << not_a_time.err;
-  const result huge_tau = run("snapshot s1-crossing --time 1 --agent A --tau 1e300", "huge_tau");
-  EXPECT_EQ(huge_tau.code, 2);
-  EXPECT_TRUE(contains(huge_tau.err, "--tau 1e+300: not on the forecast grid")) << huge_tau.err;
-  EXPECT_EQ(run("snapshot s1-crossing --time 1 --agent C", "unknown_agent").code, 2);
-  EXPECT_EQ(run("snapshot s1-crossing --time 1", "missing_agent").code, 2);
+  struct bad_option {
+    const char* args;
+    const char* label;
+    const char* message;  ///< what the error must say; empty: only the exit code is checked
+  };
+  const bad_option cases[] = {
+      {"run s1-crossing --policy sideways", "bad_policy", "--policy sideways: expected adj, const:SECONDS or robust"},
+      {"run s1-crossing --policy const:0.3", "off_grid_policy",
+       "builtin:s1-crossing: --policy const:0.3: planner.policy.constant_forecast_time = 0.3: expected a forecast time on "
+       "the grid"},
+      {"run s1-crossing --jobs many", "bad_jobs", "--jobs: expected an integer from 1 to 256, got many"},
+      {"snapshot s1-crossing --time soon --agent A", "word_time", "--time: expected a number of seconds, got soon"},
+      {"run s1-crossing --seed minus", "bad_seed", ""},
+      // A negative seed is refused, not wrapped around to 2^64 − 5.
+      {"run s1-crossing --seed -5", "negative_seed", "expected an integer from 0 to 18446744073709551615, got -5"},
+      {"run s1-crossing --set a_kmh", "bad_set", ""},
+      {"run s1-crossing --set speed_kmh=3", "unknown_parameter", "--set speed_kmh: unknown parameter"},
+      {"snapshot s1-crossing --time 9 --agent A", "late_snapshot", ""},
+      {"snapshot s1-crossing --time nan --agent A", "nan_snapshot", "--time nan: expected a time from 0 to the duration 8.000 s"},
+      {"snapshot s1-crossing --time 1 --agent A --tau 1e300", "huge_tau", "--tau 1e+300: not on the forecast grid"},
+      {"snapshot s1-crossing --time 1 --agent C", "unknown_agent", ""},
+      {"snapshot s1-crossing --time 1", "missing_agent", ""},
+  };
+  for (const bad_option& c : cases) {
+    const result r = run(c.args, c.label);
+    EXPECT_EQ(r.code, 2) << c.args << ": " << r.err;
+    EXPECT_TRUE(contains(r.err, c.message)) << c.args << ": " << r.err;
+  }
 }
 
 TEST(maneuvermap, run_writes_the_five_files_and_prints_the_metrics) {
