@@ -151,6 +151,7 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons, const std:
     segment s;
     box b;
     bool open;
+    std::size_t polygon;
   };
   std::vector<edge> edges;
   for (std::size_t i = 0; i < polygons_.size(); ++i) {
@@ -163,7 +164,8 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons, const std:
       edges.push_back({s,
                        {{std::min(s.a.x, s.b.x) - w, std::min(s.a.y, s.b.y) - w},
                         {std::max(s.a.x, s.b.x) + w, std::max(s.a.y, s.b.y) + w}},
-                       open});
+                       open,
+                       i});
     }
   }
   // By the left end of their boxes, so that each edge meets only those that can reach it.
@@ -185,6 +187,26 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons, const std:
     if (contains(p)) return true;
     for (const segment& o : open_segments) {
       if (squared_distance_to_segment(p, o.a, o.b) <= 4.0 * drivable_area_closing * drivable_area_closing) return true;
+    }
+    return false;
+  };
+  // A point of an edge inside another polygon, farther than `interior_slack` from its edges, is not
+  // on the union's boundary, whatever the probes say: where a lane meets another tangentially (a
+  // roundabout's entry, a lanelet's fork), an edge runs on inside the other lane, closer to its edge
+  // than the probes' reach, and is no edge of the road there.
+  constexpr double interior_slack = 1e-6;
+  const auto inside_another = [&](vec2 p, std::size_t own) {
+    for (std::size_t i = 0; i < polygons_.size(); ++i) {
+      const box& b = boxes_[i];
+      if (i == own || p.x < b.lo.x || p.x > b.hi.x || p.y < b.lo.y || p.y > b.hi.y) continue;
+      if (!inside_polygon(polygons_[i], p)) continue;
+      const std::vector<vec2>& polygon = polygons_[i];
+      bool clear = true;
+      for (std::size_t j = 0; j < polygon.size() && clear; ++j) {
+        clear = squared_distance_to_segment(p, polygon[j], polygon[(j + 1) % polygon.size()]) >
+                interior_slack * interior_slack;
+      }
+      if (clear) return true;
     }
     return false;
   };
@@ -227,7 +249,7 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons, const std:
       const vec2 middle = s.a + (0.5 * (cuts[c] + cuts[c + 1])) * along;
       const bool on_left = covered(middle + drivable_area_closing * left);
       const bool on_right = covered(middle - drivable_area_closing * left);
-      if (on_left == on_right) continue;
+      if (on_left == on_right || inside_another(middle, edges[e].polygon)) continue;
       const vec2 from = s.a + cuts[c] * along;
       const vec2 to = s.a + cuts[c + 1] * along;
       // Consecutive boundary pieces of one edge are one segment.

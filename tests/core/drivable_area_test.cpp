@@ -67,6 +67,22 @@ TEST(drivable_area, a_road_with_a_branch_keeps_the_edge_pieces_beside_the_branch
   for (const segment& s : area.boundary()) EXPECT_TRUE(separates_inside_from_outside(area, s));
 }
 
+TEST(drivable_area, an_edge_that_runs_on_inside_another_lane_near_its_edge_is_no_boundary) {
+  // Two lanes overlapping over x = 50..100, the second shifted 5 cm to the left: along the overlap
+  // each one's edge lies 5 cm inside the other (closer than the probes' 0.1 m), and only the outer
+  // edges bound the road; where one lane ends, the 5 cm step between their edges is boundary.
+  const drivable_area area({box(0.0, -1.75, 100.0, 1.75), box(50.0, -1.70, 150.0, 1.80)});
+  EXPECT_NEAR(total_length(area.boundary()), 2.0 * (100.0 + 3.5 + 50.0 + 0.05), 1e-9);
+  for (const segment& s : area.boundary()) {
+    const vec2 middle = 0.5 * (s.a + s.b);
+    EXPECT_FALSE(middle.x > 50.0 && middle.x < 100.0 && std::abs(middle.y) < 1.75)
+        << "an inner edge at (" << middle.x << ", " << middle.y << ")";
+  }
+  // A lane within a wider one, 5 cm from its edges, adds no boundary.
+  const drivable_area nested({box(0.0, -1.75, 100.0, 1.75), box(20.0, -1.70, 60.0, 1.70)});
+  EXPECT_NEAR(total_length(nested.boundary()), 2.0 * (100.0 + 3.5), 1e-9);
+}
+
 TEST(drivable_area, open_edges_lead_on_beyond_the_map_and_are_no_boundary) {
   // A road whose two ends (edges 1 and 3 of the box) lead on: only its sides bound it; a second
   // piece continuing it past x = 100 with its own open ends keeps that so.
