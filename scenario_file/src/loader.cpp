@@ -259,19 +259,20 @@ class mapper {
   /// `drivable_area:` (spec §5's road constraint): the file's roads, each as wide as its width, and
   /// further polygons, into `scenario::drivable_area`.
   void read_drivable_area(const map_view& area) {
-    area.allow({"roads", "polygons_m"});
+    area.allow({"roads", "roundabout", "polygons_m"});
     mm::drivable_outline& outline = result_.scenario.drivable_area;
     std::vector<std::vector<vec2>>& polygons = outline.polygons;
+    const auto add = [&](mm::drivable_outline piece) {
+      for (const mm::polygon_edge& e : piece.open_edges) outline.open_edges.push_back({polygons.size() + e.polygon, e.edge});
+      for (std::vector<vec2>& p : piece.polygons) polygons.push_back(std::move(p));
+    };
     if (auto r = area.get("roads"); r && read_bool(ctx_, *r)) {
       if (result_.roads.empty()) {
         fail_value(ctx_, *r, "false, or roads: in the file (the drivable area is made of the roads it lists)");
       }
-      for (const road& each : result_.roads) {
-        mm::drivable_outline piece = road_polygons(each);
-        for (const mm::polygon_edge& e : piece.open_edges) outline.open_edges.push_back({polygons.size() + e.polygon, e.edge});
-        for (std::vector<vec2>& p : piece.polygons) polygons.push_back(std::move(p));
-      }
+      for (const road& each : result_.roads) add(road_polygons(each));
     }
+    if (auto r = area.get("roundabout")) read_roundabout_lanes(*r, add);
     if (auto p = area.get("polygons_m")) {
       for (const field& item : read_list(ctx_, *p)) {
         std::vector<vec2> polygon = read_points(ctx_, item, 3, mm::largest_drivable_vertex_count);
@@ -283,8 +284,41 @@ class mapper {
       }
     }
     if (polygons.empty()) {
-      fail_value(ctx_, area.self(), "roads: true (with roads: in the file) or polygons_m: a list of polygons");
+      fail_value(ctx_, area.self(),
+                 "roads: true (with roads: in the file), roundabout: true (with roundabout: in the file) or "
+                 "polygons_m: a list of polygons");
     }
+  }
+
+  /// `drivable_area: {roundabout: true}` or `{roundabout: {lane_width_m: W}}`: the lanes of the file's
+  /// roundabout, each W wide (3.5 m for `true`), given to `add` (`mm::sim::roundabout_lanes`).
+  template <class add_outline>
+  void read_roundabout_lanes(const field& f, const add_outline& add) {
+    constexpr double default_lane_width = 3.5;
+    double lane_width = default_lane_width;
+    field width_field = f;
+    if (f.node.IsMap()) {
+      const map_view v(ctx_, {f});
+      v.allow({"lane_width_m"});
+      if (auto w = v.get("lane_width_m")) width_field = *w;
+      lane_width = v.quantity_or("lane_width", {metres}, default_lane_width, range::positive);
+    } else if (!read_bool(ctx_, f)) {
+      return;
+    }
+    if (!result_.roundabout) {
+      fail_value(ctx_, f, "false, or a roundabout: block in the file (the drivable area is made of its lanes)");
+    }
+    std::vector<mm::sim::roundabout_arm> arms;
+    for (const named_arm& each : result_.roundabout->arms) arms.push_back(each.arm);
+    const mm::sim::roundabout& ring = result_.roundabout->ring;
+    const double widest = 2.0 * std::min(ring.radius, ring.connection_radius);
+    if (!(lane_width < widest)) {
+      fail_value(ctx_, width_field,
+                 "a lane width below " + number_text(widest) +
+                     " m, twice the smaller of the roundabout's radius_m and connection_radius_m (a lane's inner "
+                     "edge would turn inside out)");
+    }
+    add(mm::sim::roundabout_lanes(ring, arms, lane_width));
   }
 
   void read_defaults(const map_view& top) {

@@ -1,5 +1,6 @@
 #include "mm/sim/roundabout.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -68,7 +69,64 @@ void append_exit(path& route, const roundabout& ring, const roundabout_arm& exit
   route.straight(exit.straight_length);
 }
 
+/// The connecting arc and straight of `exit`, from the ring at its diverge angle.
+path exit_piece(const roundabout& ring, const roundabout_arm& exit) {
+  const double angle = exit.angle - junction_angle(ring, exit);
+  path result(mm::pose{ring.center + ring.radius * unit_vector(angle), angle + pi / 2.0});
+  append_exit(result, ring, exit);
+  return result;
+}
+
+/// Appends to `outline` the lane `width` wide about `centre`: a quadrilateral {a − n, b − n, b + n,
+/// a + n} between consecutive cross-sections a and b (n: half the width along the left normal),
+/// one per straight and one per chord of an arc; the first one's start edge (3) is open when
+/// `open_start`, the last one's end edge (1) when `open_end`.
+void add_lane(mm::drivable_outline& outline, const path& centre, double width, bool open_start, bool open_end) {
+  const double half = 0.5 * width;
+  const auto cross_section = [&](double s) {
+    const path_point p = centre.at(s);
+    return std::pair{p.position, half * unit_vector(p.heading + pi / 2.0)};
+  };
+  const std::size_t first = outline.polygons.size();
+  for (const path_segment& piece : centre.segments()) {
+    std::size_t chords = 1;
+    if (piece.curvature != 0.0) {
+      // A chord over the angle Δ lies (ρ + w/2)(1 − cos(Δ/2)) inside the outer edge's circle.
+      const double outer = 1.0 / std::abs(piece.curvature) + half;
+      const double largest_angle = 2.0 * std::acos(1.0 - roundabout_lane_chord_error / outer);
+      chords = static_cast<std::size_t>(std::ceil(std::abs(piece.curvature) * piece.length / largest_angle));
+      chords = std::max<std::size_t>(chords, 1);
+    }
+    for (std::size_t i = 0; i < chords; ++i) {
+      const double from = piece.start_arc_length + piece.length * static_cast<double>(i) / static_cast<double>(chords);
+      const double to = piece.start_arc_length + piece.length * static_cast<double>(i + 1) / static_cast<double>(chords);
+      const auto [a, na] = cross_section(from);
+      const auto [b, nb] = cross_section(to);
+      outline.polygons.push_back({a - na, b - nb, b + nb, a + na});
+    }
+  }
+  if (open_start) outline.open_edges.push_back({first, 3});
+  if (open_end) outline.open_edges.push_back({outline.polygons.size() - 1, 1});
+}
+
 }  // namespace
+
+mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width) {
+  check(ring);
+  for (const roundabout_arm& arm : arms) check(ring, arm);
+  if (!(std::isfinite(lane_width) && lane_width > 0.0 && lane_width < 2.0 * std::min(ring.radius, ring.connection_radius))) {
+    throw std::invalid_argument("roundabout: lane width = " + std::to_string(lane_width) +
+                                ": expected above 0 and below twice the smaller of radius and connection_radius (" +
+                                std::to_string(2.0 * std::min(ring.radius, ring.connection_radius)) + ")");
+  }
+  mm::drivable_outline outline;
+  add_lane(outline, path::circular_arc(ring.center, ring.radius, 0.0, 2.0 * pi), lane_width, false, false);
+  for (const roundabout_arm& arm : arms) {
+    add_lane(outline, entry_piece(ring, arm), lane_width, true, false);
+    add_lane(outline, exit_piece(ring, arm), lane_width, false, true);
+  }
+  return outline;
+}
 
 double merge_angle(const roundabout& ring, const roundabout_arm& entry) {
   check(ring, entry);

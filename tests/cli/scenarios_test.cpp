@@ -9,6 +9,8 @@
 
 #include "cli/support.hpp"
 #include "mm/cli/commands.hpp"
+#include "mm/drivable_area.hpp"
+#include "mm/footprint.hpp"
 #include "sim/scenarios.hpp"
 
 namespace {
@@ -23,6 +25,7 @@ struct finished_run {
   run_outcome outcome;
   std::vector<std::vector<std::string>> decisions;  ///< rows of decisions.csv
   std::vector<std::vector<std::string>> map;        ///< rows of map.csv
+  std::vector<std::vector<std::string>> trajectories;  ///< rows of trajectories.csv
   nlohmann::json summary;
   nlohmann::json scene;
 };
@@ -41,6 +44,7 @@ finished_run run_builtin(const std::string& name, const std::string& dir_name,
   r.outcome = run_scenario(loaded, settings);
   r.decisions = csv_rows(dir / "decisions.csv");
   r.map = csv_rows(dir / "map.csv");
+  r.trajectories = csv_rows(dir / "trajectories.csv");
   r.summary = nlohmann::json::parse(read_file(dir / "summary.json"));
   r.scene = nlohmann::json::parse(read_file(dir / "scene.json"));
   return r;
@@ -275,6 +279,37 @@ TEST(example_scenarios, on_the_road_a_swerves_round_b_only_within_its_lane) {
   ASSERT_TRUE(road.scene["drivable_area"].is_object()) << road.scene.dump().substr(0, 300);
   EXPECT_EQ(road.scene["drivable_area"]["boundary_m"].size(), 8U);
   EXPECT_TRUE(open.scene["drivable_area"].is_null());
+}
+
+TEST(example_scenarios, in_the_roundabout_s_lanes_a_brakes_longer_and_its_footprint_never_leaves_them) {
+  // examples/scenarios/s2-roundabout-road.yaml: S2 with the roundabout's 3.5 m lanes as the drivable
+  // area. Measured on 2026-12-05: A's first room 0.585 (1.0 in S2), 3.08 s of braking (1.03 s in S2),
+  // its slowest 27.7 km/h (31.5), B passed at 1.48 m (1.44 m).
+  const std::string file = MM_SOURCE_DIR "/examples/scenarios/s2-roundabout-road.yaml";
+  const finished_run road = run_builtin(file, "s2_road");
+  const finished_run open = run_builtin("s2-roundabout", "s2_open_road");
+  const mm::sim::run_metrics& r = road.outcome.metrics.at(0);
+  const mm::sim::run_metrics& o = open.outcome.metrics.at(0);
+  EXPECT_FALSE(r.crash);
+  EXPECT_GT(*r.min_dist_m, 1.0);
+  EXPECT_GT(r.time_in_brake_s, o.time_in_brake_s + 1.0) << "the lane leaves less room to steer round B";
+  EXPECT_LT(first_room(road), 0.9);
+  EXPECT_GT(first_room(road), 0.3);
+  EXPECT_DOUBLE_EQ(first_room(open), 1.0);
+  // A's footprint (4.5 m × 1.8 m) stays clear of the lanes' edges at every step.
+  const mm::drivable_area area(sf::load(file).scenario.drivable_area);
+  std::size_t steps = 0;
+  for (const auto& row : road.trajectories) {
+    if (row.at(1) != "A") continue;
+    const mm::pose at{{std::stod(row.at(2)), std::stod(row.at(3))}, std::stod(row.at(4))};
+    const mm::placed_footprint f = mm::place(mm::rectangle{4.5, 1.8}, at);
+    ASSERT_TRUE(area.contains(at.position)) << "t = " << row.at(0);
+    ASSERT_GT(mm::boundary_clearance(area.boundary(), f, 1.0), 0.0) << "t = " << row.at(0);
+    ++steps;
+  }
+  EXPECT_EQ(steps, 446U);  // from 0.55 s, when the meet block lets A in, to 5 s
+  ASSERT_TRUE(road.scene["drivable_area"].is_object());
+  EXPECT_GT(road.scene["drivable_area"]["boundary_m"].size(), 100U) << "the ring's and the arcs' chords";
 }
 
 // --- output files ------------------------------------------------------------------------------

@@ -143,7 +143,15 @@ const std::vector<error_case> cases{
     {"a drivable area of the roads without roads", with_line(5, "duration_s: 5\ndrivable_area: {roads: true}"), 6,
      "drivable_area.roads", {"= true", "roads: in the file"}},
     {"a drivable area without a polygon", with_line(5, "duration_s: 5\ndrivable_area: {roads: false}"), 6,
-     "drivable_area", {"expected roads: true", "polygons_m"}},
+     "drivable_area", {"expected roads: true", "roundabout: true", "polygons_m"}},
+    {"a drivable area of the roundabout without one", with_line(5, "duration_s: 5\ndrivable_area: {roundabout: true}"), 6,
+     "drivable_area.roundabout", {"= true", "a roundabout: block in the file"}},
+    {"roundabout lanes too wide", with_line(5, "duration_s: 5\nroundabout: {connection_radius_m: 10, arms: {east: {angle_deg: 0}}}\n"
+                                              "drivable_area: {roundabout: {lane_width_m: 20}}"), 7,
+     "drivable_area.roundabout.lane_width_m", {"= 20", "a lane width below 20 m", "connection_radius_m"}},
+    {"unknown key in the roundabout's lanes", with_line(5, "duration_s: 5\nroundabout: {arms: {east: {angle_deg: 0}}}\n"
+                                                        "drivable_area: {roundabout: {lane_width: 3}}"), 7,
+     "drivable_area.roundabout.lane_width", {"unknown key", "did you mean lane_width_m?"}},
     {"a drivable polygon on one line", with_line(5, "duration_s: 5\ndrivable_area:\n  polygons_m:\n    - [[0, 0], [1, 1], [2, 2]]"), 8,
      "drivable_area.polygons_m[0]", {"expected a polygon of at least 3 vertices not all on one line", "no area"}},
     {"empty agents", with_lines({{6, "agents: []"}}, 6), 6, "agents", {"= <a list>", "expected at least one agent"}},

@@ -236,6 +236,40 @@ agents:
   EXPECT_TRUE(load_text(full, "full.yaml").scenario.drivable_area.empty());
 }
 
+TEST(scenario_file, the_drivable_area_of_a_roundabout_is_its_lanes) {
+  const std::string head = R"(format: maneuvermap-scenario/1
+name: in-the-ring
+roundabout:
+  radius_m: 25
+  connection_radius_m: 12.66
+  arms:
+    east: {angle_deg: 0, lane_offset_m: 1.75, straight_length_m: 60}
+    north: {angle_deg: 90, lane_offset_m: 1.75, straight_length_m: 60}
+agents:
+  - {name: A, kind: planning_vehicle, desired_speed_kmh: 30, path: {roundabout: {entry: east, exit: north}}}
+)";
+  const loaded_scenario l = load_text(head + "drivable_area: {roundabout: true}\n", "ring.yaml");
+  std::vector<mm::sim::roundabout_arm> arms;
+  for (const named_arm& a : l.roundabout->arms) arms.push_back(a.arm);
+  const mm::drivable_outline lanes = mm::sim::roundabout_lanes(l.roundabout->ring, arms, 3.5);  // true: 3.5 m lanes
+  EXPECT_EQ(l.scenario.drivable_area.polygons, lanes.polygons);
+  EXPECT_EQ(l.scenario.drivable_area.open_edges, lanes.open_edges);
+  const mm::drivable_area area(l.scenario.drivable_area);
+  EXPECT_TRUE(area.contains({-25.0, 0.0}));   // the ring, opposite the arms
+  EXPECT_FALSE(area.contains({-27.0, 0.0}));  // 2 m outside its centre line
+  EXPECT_TRUE(area.contains({60.0, 3.0}));    // the east arm's entry lane
+  EXPECT_FALSE(area.contains({-60.0, 1.75})); // no west arm
+  // A width of its own, and a polygon besides.
+  const loaded_scenario wide = load_text(head + "drivable_area:\n  roundabout: {lane_width_m: 4.5}\n  polygons_m: [[[-1, -1], [1, -1], [0, 1]]]\n", "ring.yaml");
+  const mm::drivable_area wider(wide.scenario.drivable_area);
+  EXPECT_TRUE(wider.contains({-27.0, 0.0}));
+  EXPECT_TRUE(wider.contains({0.0, 0.0}));
+  EXPECT_EQ(wide.scenario.drivable_area.polygons.size(), mm::sim::roundabout_lanes(l.roundabout->ring, arms, 4.5).polygons.size() + 1);
+  // false: no lanes.
+  EXPECT_TRUE(load_text(head + "drivable_area: {roundabout: false, polygons_m: [[[-1, -1], [1, -1], [0, 1]]]}\n", "ring.yaml")
+                  .scenario.drivable_area.polygons.size() == 1);
+}
+
 TEST(scenario_file, parameters_take_their_defaults_and_command_line_overrides_replace_them) {
   load_options options;
   options.overrides = {{"a_kmh", 72.0}, {"on", 0.0}, {"a_kmh", 54.0}};  // the later one wins

@@ -2,10 +2,15 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
+#include "mm/drivable_area.hpp"
 #include "mm/maneuver.hpp"
 
 namespace {
@@ -101,6 +106,96 @@ TEST(sim_roundabout, invalid_geometry_is_rejected) {
   EXPECT_THROW(roundabout_route(ring, {0.0, 0.0, -1.0}, {1.0, 0.0, 10.0}), std::invalid_argument);
   EXPECT_THROW(roundabout_ring(ring, 0.0, -1.0), std::invalid_argument);
   EXPECT_THROW(roundabout_route(roundabout{{0.0, 0.0}, 0.0, 20.0}, {}, {}), std::invalid_argument);
+}
+
+/// S2's roundabout (scenarios/s2-roundabout.yaml): four two-way arms, lanes 1.75 m either side.
+struct s2_geometry {
+  roundabout ring{{0.0, 0.0}, 25.0, 12.66};
+  std::vector<roundabout_arm> arms{{0.0, 1.75, 60.0}, {pi / 2.0, 1.75, 60.0}, {pi, 1.75, 60.0}, {-pi / 2.0, 1.75, 60.0}};
+};
+
+/// The nearest distance [m] from `p` to the area's boundary.
+double boundary_distance(const mm::drivable_area& area, vec2 p) {
+  double nearest = std::numeric_limits<double>::infinity();
+  for (const mm::segment& s : area.boundary()) {
+    const vec2 d = s.b - s.a;
+    const double t = std::clamp(mm::dot(p - s.a, d) / mm::dot(d, d), 0.0, 1.0);
+    nearest = std::min(nearest, mm::norm(p - (s.a + t * d)));
+  }
+  return nearest;
+}
+
+TEST(sim_roundabout, the_lanes_hold_every_route_with_half_a_lane_either_side) {
+  const s2_geometry g;
+  const double w = 3.5;
+  const mm::drivable_area area(roundabout_lanes(g.ring, g.arms, w));
+  for (std::size_t entry = 0; entry < g.arms.size(); ++entry) {
+    for (std::size_t exit = 0; exit < g.arms.size(); ++exit) {
+      const path route = roundabout_route(g.ring, g.arms[entry], g.arms[exit]);
+      for (double s = 0.125; s < route.length(); s += 0.25) {  // not on the open ends' edges
+        const path_point p = route.at(s);
+        const vec2 left = mm::unit_vector(p.heading + pi / 2.0);
+        // The chords lie within roundabout_lane_chord_error of the lane's true edges.
+        const double inner = 0.5 * w - roundabout_lane_chord_error - 0.005;
+        for (const double lateral : {0.0, inner, -inner}) {
+          const vec2 q = p.position + lateral * left;
+          ASSERT_TRUE(area.contains(q)) << "entry " << entry << ", exit " << exit << ", s = " << s << " m, "
+                                        << lateral << " m to the left: (" << q.x << ", " << q.y << ")";
+          // The boundary is half a lane away, less the chords' error, also where a merging lane's
+          // edge meets the ring's tangentially (the ring's edge runs on inside the merging lane).
+          if (lateral == 0.0) {
+            ASSERT_GT(boundary_distance(area, q), 0.5 * w - roundabout_lane_chord_error - 1e-9) << "entry " << entry << ", exit " << exit << ", s = " << s << " of " << route.length() << " (" << q.x << ", " << q.y << ")";
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST(sim_roundabout, the_lanes_end_half_a_lane_beside_their_centre_lines_and_lead_on_at_the_arms_ends) {
+  const s2_geometry g;
+  const double w = 3.5;
+  const mm::drivable_area area(roundabout_lanes(g.ring, g.arms, w));
+  for (const double between_arms : {pi / 4.0, 3.0 * pi / 4.0, -pi / 4.0, -3.0 * pi / 4.0}) {
+    // The ring alone, between the arms: R ± w/2 is its edge.
+    EXPECT_TRUE(area.contains(ring_point(g.ring, between_arms)));
+    for (const double radius : {25.0 - 0.5 * w - 0.05, 25.0 + 0.5 * w + 0.05}) {
+      const vec2 outside = radius * mm::unit_vector(between_arms);
+      EXPECT_FALSE(area.contains(outside)) << "angle " << between_arms << ", radius " << radius;
+      EXPECT_LT(boundary_distance(area, outside), 0.05 + roundabout_lane_chord_error + 1e-9);
+    }
+  }
+  for (const roundabout_arm& arm : g.arms) {
+    const vec2 axis = mm::unit_vector(arm.angle);
+    const vec2 left = mm::unit_vector(arm.angle + pi / 2.0);
+    const vec2 middle = g.ring.center + 60.0 * axis;  // halfway along the arm's straights (μ ≈ 34.8 m)
+    // w = 2o: the two lanes meet on the axis, with no boundary between them.
+    EXPECT_TRUE(area.contains(middle + 0.01 * left) && area.contains(middle - 0.01 * left)) << "arm at " << arm.angle;
+    EXPECT_GT(boundary_distance(area, middle), 2.0 * 1.75 - 1e-9);
+    for (const double side : {1.0, -1.0}) {
+      EXPECT_FALSE(area.contains(middle + side * (1.75 + 0.5 * w + 0.05) * left)) << "arm at " << arm.angle;
+    }
+    // The far end of the arm leads on: no boundary across it, only the lanes' sides end there.
+    const path entry = roundabout_entry_route(g.ring, arm, pi / 2.0);
+    const vec2 end = entry.at(0.0).position;
+    EXPECT_GT(boundary_distance(area, end), 0.5 * w - 1e-9) << "arm at " << arm.angle;
+    EXPECT_GT(boundary_distance(area, end + 2.0 * 1.75 * mm::unit_vector(arm.angle - pi / 2.0)), 0.5 * w - 1e-9);
+  }
+}
+
+TEST(sim_roundabout, lanes_too_wide_for_the_curves_or_not_positive_are_rejected) {
+  const s2_geometry g;
+  for (const double w : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), 2.0 * 12.66, 30.0}) {
+    EXPECT_THROW(roundabout_lanes(g.ring, g.arms, w), std::invalid_argument) << "w = " << w;
+  }
+  try {
+    roundabout_lanes(g.ring, g.arms, 26.0);
+    FAIL() << "a lane wider than twice the connecting arcs' radius was accepted";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("lane width = 26"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(roundabout_lanes(g.ring, std::vector<roundabout_arm>{{0.0, 30.0, 50.0}}, 3.5), std::invalid_argument);
+  EXPECT_NO_THROW(roundabout_lanes(g.ring, {}, 3.5));  // the ring alone
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #pragma once
 
+#include <span>
+
+#include "mm/drivable_area.hpp"
 #include "mm/geometry.hpp"
 #include "mm/sim/path.hpp"
 
@@ -60,5 +63,24 @@ path roundabout_entry_route(const roundabout& ring, const roundabout_arm& entry,
 
 /// The ring alone from polar angle `start_angle` [rad], counter-clockwise over `sweep` [rad] > 0.
 path roundabout_ring(const roundabout& ring, double start_angle, double sweep);
+
+/// Largest distance [m] between a lane's curved edge and the chords `roundabout_lanes` draws it
+/// with: half `mm::drivable_area_closing`, and few pieces (the outer edge of a 3.5 m lane on a 25 m
+/// ring in 52 chords), since the road constraint's cost grows with the segments near the ego (at
+/// 1 cm a plan of S2 on its lanes took about twice as long; docs/method.md §5 item 16).
+inline constexpr double roundabout_lane_chord_error = 0.05;
+
+/// The lanes of a roundabout as a drivable area (spec §5's road constraint, docs/method.md §5
+/// item 16): the circulating lane, the annulus R ± w/2 about C, and for every arm its entry lane and
+/// its exit lane (their straights and connecting arcs), each w = `lane_width` [m] wide about its
+/// centre line. An arc is drawn with chords between cross-sections perpendicular to it, each chord
+/// within `roundabout_lane_chord_error` of the circle it cuts (the outer side of a bend lies up to
+/// that much inside the true edge, the inner side outside it). The outer end of each straight
+/// leads on (an open edge: a vehicle may drive off the drawn arm). With w = 2o (o the arm's lane
+/// offset) an arm's two lanes meet along its axis.
+///
+/// Throws std::invalid_argument unless 0 < w < 2·min(R, r) (r the connecting arcs' radius: the
+/// inner edge of a narrower curve would turn inside out) and every arm is valid (as `merge_angle`).
+mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width);
 
 }  // namespace mm::sim
