@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <numbers>
 #include <random>
 
 #include "mm/planner.hpp"
@@ -49,6 +50,29 @@ std::shared_ptr<const drivable_area> random_road(std::mt19937_64& rng, const ego
   return std::make_shared<const drivable_area>(std::move(pieces));
 }
 
+/// A curved road about the ego: a ring of chords (0.05 rad each) 3 to 8 m wide, its centre line
+/// through a point up to 1.5 m beside the ego, bending left or right with a radius of 8 to 60 m:
+/// many boundary segments near the ego, and an inner edge whose chords' lines pass near it.
+std::shared_ptr<const drivable_area> random_curved_road(std::mt19937_64& rng, const ego_state& ego) {
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const double heading = ego.pose.heading + 0.6 * (unit(rng) - 0.5);
+  const vec2 left = unit_vector(heading + 0.5 * std::numbers::pi);
+  const double width = 3.0 + 5.0 * unit(rng);
+  const double radius = 8.0 + 52.0 * unit(rng);
+  const double side = unit(rng) < 0.5 ? 1.0 : -1.0;
+  const vec2 centre = ego.pose.position + (side * radius + 3.0 * (unit(rng) - 0.5)) * left;
+  const std::size_t chords = static_cast<std::size_t>(std::ceil(2.0 * std::numbers::pi / 0.05));
+  std::vector<std::vector<vec2>> pieces;
+  for (std::size_t i = 0; i < chords; ++i) {
+    const vec2 a = unit_vector(2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(chords));
+    const vec2 b = unit_vector(2.0 * std::numbers::pi * static_cast<double>(i + 1) / static_cast<double>(chords));
+    const double inner = radius - 0.5 * width;
+    const double outer = radius + 0.5 * width;
+    pieces.push_back({centre + inner * a, centre + outer * a, centre + outer * b, centre + inner * b});
+  }
+  return std::make_shared<const drivable_area>(std::move(pieces));
+}
+
 std::string describe_road(const drivable_area& area) {
   std::string text = "drivable area:\n";
   for (const auto& polygon : area.polygons()) {
@@ -64,14 +88,17 @@ TEST(road_constraint, the_fast_road_field_finds_exactly_the_samples_that_leave_t
   std::mt19937_64 rng(testing::property_seed() + 71);
   const std::size_t count = testing::property_count(40);
   std::size_t tested = 0;
+  std::size_t tested_curved = 0;
   std::size_t leaving = 0;
   std::size_t staying = 0;
   for (std::size_t trial = 0; trial < count; ++trial) {
     plan_input in = testing::random_scene(rng, {0, false});
     in.config.resolution = trial % 2 == 0 ? sampling_resolution{7, 9} : sampling_resolution{15, 21};
-    const auto area = random_road(rng, in.ego);
+    const bool curved = trial % 3 == 2;
+    const auto area = curved ? random_curved_road(rng, in.ego) : random_road(rng, in.ego);
     if (!starts_on_drivable_area(*area, in.ego)) continue;
     ++tested;
+    tested_curved += curved ? 1 : 0;
     const maneuver_samples samples =
         sample_maneuvers(in.ego, in.nominal.curvature, in.config.displacement_horizon, in.config.resolution);
     collision_window window{in.config.displacement_horizon, in.config.collision_window, 0.05, 0.0};
@@ -92,9 +119,11 @@ TEST(road_constraint, the_fast_road_field_finds_exactly_the_samples_that_leave_t
     }
   }
   EXPECT_GT(tested, count / 2);
+  EXPECT_GT(tested_curved, count / 6);
   EXPECT_GT(leaving, 0U);
   EXPECT_GT(staying, 0U);
-  std::printf("%zu roads: %zu samples leave the road, %zu stay on it\n", tested, leaving, staying);
+  std::printf("%zu roads (%zu curved): %zu samples leave the road, %zu stay on it\n", tested, tested_curved, leaving,
+              staying);
 }
 
 TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_general_convex_test_and_above_its_line_s) {
