@@ -69,13 +69,6 @@ void append_exit(path& route, const roundabout& ring, const roundabout_arm& exit
   route.straight(exit.straight_length);
 }
 
-/// The connecting arc and straight of `exit`, from the ring at its diverge angle.
-path exit_piece(const roundabout& ring, const roundabout_arm& exit) {
-  const double angle = exit.angle - junction_angle(ring, exit);
-  path result(mm::pose{ring.center + ring.radius * unit_vector(angle), angle + pi / 2.0});
-  append_exit(result, ring, exit);
-  return result;
-}
 
 /// Appends to `outline` the lane `width` wide about `centre`: a quadrilateral {a − n, b − n, b + n,
 /// a + n} between consecutive cross-sections a and b (n: half the width along the left normal),
@@ -107,6 +100,14 @@ void add_lane(mm::drivable_outline& outline, const path& centre, double width, b
   }
   if (open_start) outline.open_edges.push_back({first, 3});
   if (open_end) outline.open_edges.push_back({outline.polygons.size() - 1, 1});
+}
+
+/// The connecting arc and straight of `exit`, from the ring at its diverge angle.
+path exit_piece(const roundabout& ring, const roundabout_arm& exit) {
+  const double angle = diverge_angle(ring, exit);
+  path result(mm::pose{ring_point(ring, angle), angle + pi / 2.0});
+  append_exit(result, ring, exit);
+  return result;
 }
 
 }  // namespace
