@@ -32,7 +32,7 @@ struct drivable_outline {
   bool empty() const { return polygons.empty(); }
 };
 
-/// Gaps and slivers of a drivable area narrower than this are closed [m]: two polygons whose edges
+/// Gaps in a drivable area narrower than this are closed [m]: two polygons whose edges
 /// lie closer than it are one road there. Recorded road networks need it: the shared bound of two
 /// neighbouring lanelets is often sampled at different points by each, a centimetre or two apart
 /// (1.3 cm in USA_US101-4 of the bundled data), which a smaller closing would turn into a boundary
@@ -60,8 +60,10 @@ std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec
 /// orientation; a self-intersecting polygon counts by the even-odd rule), and the boundary of that
 /// union as segments, computed once: the parts of the polygons' edges with the union on one side and
 /// not on the other (`drivable_area_closing` from the edge). Edges shared by neighbouring polygons,
-/// and the parts of an edge inside another polygon, are not boundary: lanelets that overlap at an
-/// intersection or share a bound make one road. Edges marked *open* are never boundary: where a
+/// and the parts of an edge inside another polygon (more than 1 µm from its edges, however near),
+/// are not boundary: lanelets that overlap at an intersection or share a bound make one road, and
+/// lanes that meet tangentially (a roundabout's entry joining the ring) are bounded by their outer
+/// edges only. Edges marked *open* are never boundary: where a
 /// road leads on beyond what is mapped (the ends of a recording's lanelets, of a scenario's roads),
 /// a maneuver that drives through the end has not left the road.
 ///
