@@ -70,12 +70,16 @@ struct scenario_options {
   std::vector<std::string> overrides;
   std::string policy;
   std::optional<std::uint64_t> seed;
+  bool on_roads = false;
 };
 
 void add_scenario_options(CLI::App& command, scenario_options& o, bool with_policy) {
   command.add_option("FILE", o.file, "Scenario file, or the name of a built-in scenario (maneuvermap list)")->required();
   command.add_option("--set", o.overrides, "Override a parameter of the scenario: NAME=VALUE (repeatable)")
       ->type_name("NAME=VALUE");
+  command.add_flag("--on-roads", o.on_roads,
+                   "Plan on the road: the scenario's roads and its roundabout's 3.5 m lanes are the drivable area "
+                   "(spec §5's road constraint; as drivable_area: {roads: true, roundabout: true})");
   if (with_policy) {
     command.add_option("--policy", o.policy, "Forecast policy of every planning vehicle: adj, const:SECONDS or robust")
         ->type_name("adj|const:SECONDS|robust");
@@ -121,6 +125,7 @@ sf::loaded_scenario load(const scenario_options& o) {
   }
   if (!o.policy.empty()) options.policy = policy_option(o.policy);
   options.seed = o.seed;
+  options.on_roads = o.on_roads;
   return sf::load(o.file, options);
 }
 
@@ -190,12 +195,20 @@ struct sweep_options {
   std::string out;
   bool plots = false;
   bool keep_runs = false;
+  bool on_roads = false;
   std::optional<std::size_t> repetitions;
 };
 
 int sweep_command(const sweep_options& o) {
   mm::cli::sweep_spec spec = mm::cli::load_sweep(o.file);
   if (o.keep_runs) spec.keep_runs = true;
+  if (o.on_roads) {
+    // Checked once before any run: a scenario without roads fails here, not in every run.
+    sf::load_options check;
+    check.on_roads = true;
+    (void)sf::load_text(spec.scenario_text, spec.scenario_source, check);
+    spec.on_roads = true;
+  }
   if (o.repetitions) spec.repetitions = *o.repetitions;
   mm::cli::sweep_settings settings;
   settings.out_dir = o.out.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(o.out);
@@ -412,6 +425,8 @@ int main(int argc, char** argv) {
       ->type_name("N");
   sweep->add_option("--out", sweep_opts.out, "Output directory (default out/<sweep name>)")->type_name("DIR");
   sweep->add_flag("--keep-runs", sweep_opts.keep_runs, "Also write every run's own output directory under DIR/runs/");
+  sweep->add_flag("--on-roads", sweep_opts.on_roads,
+                  "Every run plans on the scenario's roads and roundabout lanes (as run --on-roads)");
   sweep->add_option("--repetitions", sweep_opts.repetitions, "Replace the sweep file's repetitions (e.g. 1 for a preview)")
       ->check(integer_in(1, 1000000))
       ->type_name("N");

@@ -183,6 +183,7 @@ sweep_result run_one(const sweep_spec& spec, const sweep_run& run, const std::fi
     for (std::size_t p = 0; p < spec.parameters.size(); ++p) options.overrides.emplace_back(spec.parameters[p].name, run.values[p]);
     if (!spec.policies.empty()) options.policy = spec.policies[run.policy_index];
     options.seed = run.seed;
+    options.on_roads = spec.on_roads;
     const sf::loaded_scenario loaded = sf::load_text(spec.scenario_text, spec.scenario_source, options);
     std::vector<mm::sim::run_metrics> metrics;
     if (spec.keep_runs) {
@@ -341,6 +342,7 @@ std::string sweep_json(const sweep_spec& spec, std::span<const sweep_result> res
                     {"runs", results.size()},
                     {"failed", failed},
                     {"keep_runs", spec.keep_runs},
+                    {"on_roads", spec.on_roads},
                     {"run_dirs", runs}};
   return doc.dump(2) + "\n";
 }
@@ -549,6 +551,7 @@ std::string run_command_line(const sweep_spec& spec, const sweep_run& run) {
   }
   if (!spec.policies.empty()) out += " --policy " + run.policy;
   out += " --seed " + std::to_string(run.seed);
+  if (spec.on_roads) out += " --on-roads";
   return out;
 }
 

@@ -134,11 +134,12 @@ std::unique_ptr<sim::simulation> start(const sim::scenario& s, const sim::run_op
 
 scenario_file::load_options load_options_of(const std::optional<std::map<std::string, double>>& set,
                                             const std::optional<forecast_policy>& policy,
-                                            const std::optional<std::uint64_t>& seed) {
+                                            const std::optional<std::uint64_t>& seed, bool on_roads) {
   scenario_file::load_options options;
   if (set) options.overrides.assign(set->begin(), set->end());
   options.policy = policy;
   options.seed = seed;
+  options.on_roads = on_roads;
   return options;
 }
 
@@ -257,22 +258,24 @@ void bind_scenarios(py::module_& m) {
   }, "The names of the built-in scenarios.");
   m.def("load",
         [](const py::object& file_or_builtin, const std::optional<std::map<std::string, double>>& set,
-           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed) {
+           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, bool on_roads) {
           const std::string name = py::str(py::module_::import("os").attr("fspath")(file_or_builtin));
-          return scenario_file::load(name, load_options_of(set, policy, seed));
+          return scenario_file::load(name, load_options_of(set, policy, seed, on_roads));
         },
         py::arg("file_or_builtin"), py::kw_only(), py::arg("set") = py::none(), py::arg("policy") = py::none(),
-        py::arg("seed") = py::none(),
+        py::arg("seed") = py::none(), py::arg("on_roads") = false,
         "A built-in scenario by name or a scenario file (docs/scenario-format.md), with parameter overrides "
-        "(`set={'a_kmh': 20}`), a forecast policy for every planning vehicle and a seed: as `maneuvermap run`. "
+        "(`set={'a_kmh': 20}`), a forecast policy for every planning vehicle, a seed, and `on_roads` (its roads and "
+        "roundabout lanes as the drivable area): as `maneuvermap run`. "
         "scenario_error (a ValueError) names the file, line, column and field of any problem.");
   m.def("load_text",
         [](const std::string& text, const std::string& source, const std::optional<std::map<std::string, double>>& set,
-           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed) {
-          return scenario_file::load_text(text, source, load_options_of(set, policy, seed));
+           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, bool on_roads) {
+          return scenario_file::load_text(text, source, load_options_of(set, policy, seed, on_roads));
         },
         py::arg("text"), py::arg("source") = "<text>", py::kw_only(), py::arg("set") = py::none(),
-        py::arg("policy") = py::none(), py::arg("seed") = py::none(), "As load, from the YAML text itself.");
+        py::arg("policy") = py::none(), py::arg("seed") = py::none(), py::arg("on_roads") = false,
+        "As load, from the YAML text itself.");
 }
 
 void bind_simulation(py::module_& m) {
@@ -485,12 +488,12 @@ void bind_simulation(py::module_& m) {
 
   m.def("run",
         [](const py::object& what, const std::optional<std::map<std::string, double>>& set,
-           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, std::size_t jobs,
-           bool map_columns, bool measure_cpu_time) {
+           const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, bool on_roads,
+           std::size_t jobs, bool map_columns, bool measure_cpu_time) {
           loaded_scenario loaded;
           const bool is_loaded = py::isinstance<loaded_scenario>(what);
-          if ((is_loaded || py::isinstance<sim::scenario>(what)) && (set || policy || seed)) {
-            throw py::value_error("set, policy and seed apply when loading: pass a name or a file to run()");
+          if ((is_loaded || py::isinstance<sim::scenario>(what)) && (set || policy || seed || on_roads)) {
+            throw py::value_error("set, policy, seed and on_roads apply when loading: pass a name or a file to run()");
           }
           if (is_loaded) {
             loaded = what.cast<loaded_scenario>();
@@ -499,7 +502,7 @@ void bind_simulation(py::module_& m) {
             loaded.source = "<scenario>";
           } else if (py::isinstance<py::str>(what) || py::hasattr(what, "__fspath__")) {
             const std::string name = py::str(py::module_::import("os").attr("fspath")(what));
-            loaded = scenario_file::load(name, load_options_of(set, policy, seed));
+            loaded = scenario_file::load(name, load_options_of(set, policy, seed, on_roads));
           } else {
             throw py::type_error("run(): expected a built-in name, a scenario file, a loaded_scenario or a scenario, "
                                  "got " + py::repr(what).cast<std::string>());
@@ -509,7 +512,7 @@ void bind_simulation(py::module_& m) {
           return run_whole(loaded, options);
         },
         py::arg("scenario"), py::kw_only(), py::arg("set") = py::none(), py::arg("policy") = py::none(),
-        py::arg("seed") = py::none(), py::arg("jobs") = 1, py::arg("map_columns") = true,
+        py::arg("seed") = py::none(), py::arg("on_roads") = false, py::arg("jobs") = 1, py::arg("map_columns") = true,
         py::arg("measure_cpu_time") = false,
         "Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its "
         "run_record: what `maneuvermap run` writes, as arrays. Releases the GIL.");

@@ -141,6 +141,7 @@ class mapper {
     if (auto r = top.get("roundabout")) read_roundabout(*r);
     if (auto r = top.get("roads")) read_roads(*r);
     if (top.has("drivable_area")) read_drivable_area(top.child("drivable_area"));
+    if (options_.on_roads) drive_on_roads(top);
     read_defaults(top);
     read_agents(top.require("agents"));
     if (auto m = top.get("meet")) read_meetings(*m);
@@ -260,19 +261,14 @@ class mapper {
   /// further polygons, into `scenario::drivable_area`.
   void read_drivable_area(const map_view& area) {
     area.allow({"roads", "roundabout", "polygons_m"});
-    mm::drivable_outline& outline = result_.scenario.drivable_area;
-    std::vector<std::vector<vec2>>& polygons = outline.polygons;
-    const auto add = [&](mm::drivable_outline piece) {
-      for (const mm::polygon_edge& e : piece.open_edges) outline.open_edges.push_back({polygons.size() + e.polygon, e.edge});
-      for (std::vector<vec2>& p : piece.polygons) polygons.push_back(std::move(p));
-    };
+    std::vector<std::vector<vec2>>& polygons = result_.scenario.drivable_area.polygons;
     if (auto r = area.get("roads"); r && read_bool(ctx_, *r)) {
       if (result_.roads.empty()) {
         fail_value(ctx_, *r, "false, or roads: in the file (the drivable area is made of the roads it lists)");
       }
-      for (const road& each : result_.roads) add(road_polygons(each));
+      for (const road& each : result_.roads) add_to_drivable_area(road_polygons(each));
     }
-    if (auto r = area.get("roundabout")) read_roundabout_lanes(*r, add);
+    if (auto r = area.get("roundabout")) read_roundabout_lanes(*r);
     if (auto p = area.get("polygons_m")) {
       for (const field& item : read_list(ctx_, *p)) {
         std::vector<vec2> polygon = read_points(ctx_, item, 3, mm::largest_drivable_vertex_count);
@@ -290,11 +286,45 @@ class mapper {
     }
   }
 
+  void add_to_drivable_area(mm::drivable_outline piece) {
+    mm::drivable_outline& outline = result_.scenario.drivable_area;
+    for (const mm::polygon_edge& e : piece.open_edges) outline.open_edges.push_back({outline.polygons.size() + e.polygon, e.edge});
+    for (std::vector<vec2>& p : piece.polygons) outline.polygons.push_back(std::move(p));
+  }
+
+  /// `--on-roads` (`load_options::on_roads`): the drivable area of `roads: true, roundabout: true`.
+  void drive_on_roads(const map_view& top) {
+    const auto refuse = [&](const std::string& why) { throw scenario_error(ctx_.source, 0, 0, "--on-roads", why); };
+    if (auto own = top.get("drivable_area")) {
+      refuse("the scenario gives its own drivable_area: (line " + std::to_string(own->node.Mark().line + 1) +
+             "); expected one of the two");
+    }
+    if (result_.roads.empty() && !result_.roundabout) {
+      refuse("the scenario has no roads: and no roundabout: to make a drivable area of");
+    }
+    for (const road& each : result_.roads) add_to_drivable_area(road_polygons(each));
+    if (result_.roundabout) {
+      const mm::sim::roundabout& ring = result_.roundabout->ring;
+      if (!(default_lane_width < 2.0 * std::min(ring.radius, ring.connection_radius))) {
+        refuse("the roundabout's 3.5 m lanes need radius_m and connection_radius_m above 1.75 m; give the drivable "
+               "area in the file (drivable_area: {roundabout: {lane_width_m: W}})");
+      }
+      add_to_drivable_area(mm::sim::roundabout_lanes(ring, arms_of(*result_.roundabout), default_lane_width));
+    }
+  }
+
+  static std::vector<mm::sim::roundabout_arm> arms_of(const roundabout_geometry& g) {
+    std::vector<mm::sim::roundabout_arm> arms;
+    for (const named_arm& each : g.arms) arms.push_back(each.arm);
+    return arms;
+  }
+
+  /// A roundabout lane's width when none is given [m].
+  static constexpr double default_lane_width = 3.5;
+
   /// `drivable_area: {roundabout: true}` or `{roundabout: {lane_width_m: W}}`: the lanes of the file's
-  /// roundabout, each W wide (3.5 m for `true`), given to `add` (`mm::sim::roundabout_lanes`).
-  template <class add_outline>
-  void read_roundabout_lanes(const field& f, const add_outline& add) {
-    constexpr double default_lane_width = 3.5;
+  /// roundabout, each W wide (3.5 m for `true`; `mm::sim::roundabout_lanes`).
+  void read_roundabout_lanes(const field& f) {
     double lane_width = default_lane_width;
     field width_field = f;
     if (f.node.IsMap()) {
@@ -308,8 +338,6 @@ class mapper {
     if (!result_.roundabout) {
       fail_value(ctx_, f, "false, or a roundabout: block in the file (the drivable area is made of its lanes)");
     }
-    std::vector<mm::sim::roundabout_arm> arms;
-    for (const named_arm& each : result_.roundabout->arms) arms.push_back(each.arm);
     const mm::sim::roundabout& ring = result_.roundabout->ring;
     const double widest = 2.0 * std::min(ring.radius, ring.connection_radius);
     if (!(lane_width < widest)) {
@@ -318,7 +346,7 @@ class mapper {
                      " m, twice the smaller of the roundabout's radius_m and connection_radius_m (a lane's inner "
                      "edge would turn inside out)");
     }
-    add(mm::sim::roundabout_lanes(ring, arms, lane_width));
+    add_to_drivable_area(mm::sim::roundabout_lanes(ring, arms_of(*result_.roundabout), lane_width));
   }
 
   void read_defaults(const map_view& top) {

@@ -170,4 +170,23 @@ TEST(maneuvermap, an_output_directory_that_cannot_be_created_is_an_error_with_ex
   EXPECT_TRUE(contains(r.err, "maneuvermap: error:")) << r.err;
 }
 
+TEST(maneuvermap, on_roads_plans_s2_on_its_lanes_as_the_example_file_does_and_refuses_a_second_drivable_area) {
+  const temp_dir dir("on_roads");
+  const std::string example = std::string(MM_SOURCE_DIR) + "/examples/scenarios/s2-roundabout-road.yaml";
+  const result flag = run("run s2-roundabout --on-roads --out " + (dir / "flag").string(), "on_roads_flag");
+  const result file = run("run " + example + " --out " + (dir / "file").string(), "on_roads_file");
+  ASSERT_EQ(flag.code, 0) << flag.err;
+  ASSERT_EQ(file.code, 0) << file.err;
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv"}) {
+    const std::string a = read_file(dir / "flag" / name);
+    EXPECT_FALSE(a.empty()) << name;
+    EXPECT_EQ(a, read_file(dir / "file" / name)) << name << ": --on-roads and drivable_area: {roundabout: true} differ";
+  }
+  ASSERT_EQ(run("run s2-roundabout --out " + (dir / "open").string(), "on_roads_open").code, 0);
+  EXPECT_NE(read_file(dir / "flag/trajectories.csv"), read_file(dir / "open/trajectories.csv")) << "the lanes change A's run";
+  const result twice = run("validate " + example + " --on-roads", "on_roads_twice");
+  EXPECT_EQ(twice.code, 2);
+  EXPECT_TRUE(contains(twice.err, "--on-roads: the scenario gives its own drivable_area: (line 36)")) << twice.err;
+}
+
 }  // namespace

@@ -90,6 +90,30 @@ TEST(maneuvermap_sweep, a_failed_run_exits_1_with_its_rerun_command) {
   EXPECT_TRUE(contains(r.out, "4 runs, 2 failed")) << r.out;
 }
 
+TEST(maneuvermap_sweep, on_roads_runs_every_run_on_the_scenario_s_roads_and_says_so) {
+  const temp_dir dir("sweep_on_roads");
+  write_file(dir / "s.yaml", small_sweep("  a_kmh: [-5, 30]\n"));
+  const result r = run("sweep " + (dir / "s.yaml").string() + " --on-roads --out " + (dir / "out").string(), "on_roads");
+  EXPECT_EQ(r.code, 1) << r.err;  // the runs with a_kmh = -5 fail, as without --on-roads
+  EXPECT_TRUE(contains(r.err, "--set a_kmh=-5 --set duration_s=1.5 --policy adj --seed 7 --on-roads")) << r.err;
+  EXPECT_TRUE(contains(read_file(dir / "out/sweep.json"), "\"on_roads\": true")) << read_file(dir / "out/sweep.json");
+  // A scenario with nothing to drive on is refused before any run.
+  write_file(dir / "bare.yaml", R"(format: maneuvermap-scenario/1
+name: bare
+parameters: {a_kmh: 30}
+agents:
+  - {name: A, kind: planning_vehicle, desired_speed_kmh: $a_kmh,
+     path: {start: {position_m: [0, 0], heading_deg: 0}, segments: [{straight_m: 50}]}}
+)");
+  write_file(dir / "bare-sweep.yaml", "format: maneuvermap-sweep/1\nname: bare\nscenario: " + (dir / "bare.yaml").string() +
+                                           "\nparameters:\n  a_kmh: [30]\n");
+  const result bare = run("sweep " + (dir / "bare-sweep.yaml").string() + " --on-roads --out " + (dir / "bare").string(),
+                          "on_roads_bare");
+  EXPECT_EQ(bare.code, 2) << bare.err;
+  EXPECT_TRUE(contains(bare.err, "--on-roads: the scenario has no roads: and no roundabout:")) << bare.err;
+  EXPECT_FALSE(std::filesystem::exists(dir / "bare/runs.csv"));
+}
+
 TEST(maneuvermap_sweep, a_bad_sweep_file_or_option_exits_2) {
   const temp_dir dir("sweep_bad");
   write_file(dir / "s.yaml", small_sweep("  a_kmh: [30, 40]\n", "jobs: 3\n"));

@@ -157,6 +157,9 @@ TEST(sweep_file, grid_order_is_parameters_first_outermost_then_policies_then_rep
   EXPECT_EQ(runs[3].run_dir, "a_kmh=40_b_kmh=20_const1_rep1");
   EXPECT_EQ(run_command_line(spec, runs[3]), "maneuvermap run " + spec.scenario_argument +
                                                  " --set a_kmh=40 --set b_kmh=20 --policy const:1 --seed 6");
+  sweep_spec on_roads = spec;
+  on_roads.on_roads = true;
+  EXPECT_EQ(run_command_line(on_roads, runs[3]), run_command_line(spec, runs[3]) + " --on-roads");
 }
 
 TEST(sweep_file, built_in_sweeps_load_with_their_grids) {

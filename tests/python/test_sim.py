@@ -182,6 +182,22 @@ def test_run_takes_a_name_a_path_a_loaded_scenario_or_a_scenario_and_refuses_any
         mm.sim.run(loaded, jobs=0)
 
 
+def test_on_roads_plans_on_the_roads_and_the_roundabout_s_lanes_as_the_command_line_does(source_dir):
+    plain = mm.sim.load("s2-roundabout")
+    on_roads = mm.sim.load("s2-roundabout", on_roads=True)
+    assert plain.scenario.drivable_area is None
+    area = on_roads.scenario.drivable_area
+    assert area is not None and len(area.boundary) > 100
+    example = mm.sim.load(source_dir / "examples" / "scenarios" / "s2-roundabout-road.yaml")
+    by_flag = mm.sim.run("s2-roundabout", on_roads=True)
+    assert by_flag.x.tobytes() == mm.sim.run(example).x.tobytes()
+    assert by_flag.x.tobytes() != mm.sim.run(plain).x.tobytes()
+    with pytest.raises(ValueError, match="--on-roads: the scenario gives its own drivable_area"):
+        mm.sim.load(source_dir / "examples" / "scenarios" / "s2-roundabout-road.yaml", on_roads=True)
+    with pytest.raises(ValueError, match="apply when loading"):
+        mm.sim.run(plain, on_roads=True)
+
+
 def run_in_worker(name):
     """What a worker process of a Monte-Carlo study returns: the whole run record."""
     return mm.sim.run(name)

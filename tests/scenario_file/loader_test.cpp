@@ -270,6 +270,45 @@ agents:
                   .scenario.drivable_area.polygons.size() == 1);
 }
 
+TEST(scenario_file, on_roads_makes_the_drivable_area_of_the_roads_and_the_roundabout_s_lanes) {
+  load_options on_roads;
+  on_roads.on_roads = true;
+  // S1's roads: as drivable_area: {roads: true}; S2's roundabout: as {roundabout: true}.
+  const loaded_scenario s1 = load("s1-crossing", on_roads);
+  const loaded_scenario s1_plain = load("s1-crossing");
+  EXPECT_TRUE(s1_plain.scenario.drivable_area.empty());
+  ASSERT_FALSE(s1.roads.empty());
+  mm::drivable_outline roads;
+  for (const road& r : s1.roads) {
+    const mm::drivable_outline piece = road_polygons(r);
+    for (const mm::polygon_edge& e : piece.open_edges) roads.open_edges.push_back({roads.polygons.size() + e.polygon, e.edge});
+    roads.polygons.insert(roads.polygons.end(), piece.polygons.begin(), piece.polygons.end());
+  }
+  EXPECT_EQ(s1.scenario.drivable_area.polygons, roads.polygons);
+  EXPECT_EQ(s1.scenario.drivable_area.open_edges, roads.open_edges);
+  const loaded_scenario s2 = load("s2-roundabout", on_roads);
+  std::vector<mm::sim::roundabout_arm> arms;
+  for (const named_arm& a : s2.roundabout->arms) arms.push_back(a.arm);
+  EXPECT_EQ(s2.scenario.drivable_area.polygons, mm::sim::roundabout_lanes(s2.roundabout->ring, arms, 3.5).polygons);
+  // Nothing to drive on, or a drivable area of its own: refused, naming the option.
+  const std::string bare = R"(format: maneuvermap-scenario/1
+name: bare
+agents:
+  - {name: A, kind: planning_vehicle, desired_speed_kmh: 30,
+     path: {start: {position_m: [0, 0], heading_deg: 0}, segments: [{straight_m: 50}]}}
+)";
+  try {
+    load_text(bare, "bare.yaml", on_roads);
+    FAIL() << "--on-roads without roads was accepted";
+  } catch (const scenario_error& e) {
+    EXPECT_EQ(e.field(), "--on-roads");
+    EXPECT_NE(std::string(e.what()).find("no roads: and no roundabout:"), std::string::npos) << e.what();
+  }
+  const std::string own = bare + "roads: [{centre_line_m: [[0, 0], [50, 0]]}]\ndrivable_area: {roads: true}\n";
+  EXPECT_NO_THROW(load_text(own, "own.yaml"));
+  EXPECT_THROW(load_text(own, "own.yaml", on_roads), scenario_error);
+}
+
 TEST(scenario_file, parameters_take_their_defaults_and_command_line_overrides_replace_them) {
   load_options options;
   options.overrides = {{"a_kmh", 72.0}, {"on", 0.0}, {"a_kmh", 54.0}};  // the later one wins

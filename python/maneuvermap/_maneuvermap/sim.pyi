@@ -159,11 +159,11 @@ class crash_event:
     def second(self) -> int: ...
     def __repr__(self) -> str: ...
 
-def load(file_or_builtin: Union[str, os.PathLike[str]], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ...) -> loaded_scenario:
-    """A built-in scenario by name or a scenario file (docs/scenario-format.md), with parameter overrides (`set={'a_kmh': 20}`), a forecast policy for every planning vehicle and a seed: as `maneuvermap run`. scenario_error (a ValueError) names the file, line, column and field of any problem."""
+def load(file_or_builtin: Union[str, os.PathLike[str]], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ...) -> loaded_scenario:
+    """A built-in scenario by name or a scenario file (docs/scenario-format.md), with parameter overrides (`set={'a_kmh': 20}`), a forecast policy for every planning vehicle, a seed, and `on_roads` (its roads and roundabout lanes as the drivable area): as `maneuvermap run`. scenario_error (a ValueError) names the file, line, column and field of any problem."""
     ...
 
-def load_text(text: str, source: str = ..., *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ...) -> loaded_scenario:
+def load_text(text: str, source: str = ..., *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ...) -> loaded_scenario:
     """As load, from the YAML text itself."""
     ...
 
@@ -390,7 +390,7 @@ class roundabout:
         ...
     def __repr__(self) -> str: ...
 
-def run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ...) -> run_record:
+def run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ...) -> run_record:
     """Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its run_record: what `maneuvermap run` writes, as arrays. Releases the GIL."""
     ...
 

@@ -60,6 +60,9 @@ struct sweep_spec {
   std::size_t repetitions = 1;
   std::uint64_t base_seed = 0;  ///< repetition r runs with seed base_seed + r
   bool keep_runs = false;       ///< write every run's own output directory under runs/
+  /// `--on-roads`: every run plans on the scenario's roads and roundabout lanes
+  /// (`scenario_file::load_options::on_roads`).
+  bool on_roads = false;
 };
 
 /// Parses sweep YAML `text`. `source` names it in messages, `base_dir` resolves a relative

@@ -105,6 +105,10 @@ struct load_options {
   std::optional<mm::forecast_policy> policy;
   /// `--seed`: replaces the scenario's seed.
   std::optional<std::uint64_t> seed;
+  /// `--on-roads`: the scenario's roads and its roundabout's lanes (3.5 m) become its drivable area,
+  /// as `drivable_area: {roads: true, roundabout: true}` would make them (spec §5's road constraint).
+  /// An error when the scenario has neither, or gives its own `drivable_area:`.
+  bool on_roads = false;
 };
 
 /// Parses and maps scenario YAML `text`; `source` names it in messages. Throws scenario_error
