@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+#include <vector>
+
 #include "property.hpp"
 #include "random_scenes.hpp"
 
@@ -16,6 +19,16 @@ TEST(plan_input_json, a_saved_input_plans_to_the_same_result_bit_for_bit) {
     plan_input in = testing::random_scene(rng, {1 + trial % 3, trial % 2 == 1});
     in.config.safety_margin = trial % 3 == 0 ? 0.3 : 0.0;
     in.obstacles.front().shape = trial % 4 == 2 ? footprint{disc{0.4}} : in.obstacles.front().shape;
+    if (trial % 2 == 0) {
+      // A 7 m road along the ego's heading, its ends open: the road constraint binds.
+      const vec2 along = unit_vector(in.ego.pose.heading);
+      const vec2 across{-along.y, along.x};
+      const vec2 c = in.ego.pose.position + 0.3 * across;
+      in.drivable_area = std::make_shared<const drivable_area>(
+          std::vector<std::vector<vec2>>{{c - 100.0 * along - 3.5 * across, c + 100.0 * along - 3.5 * across,
+                                          c + 100.0 * along + 3.5 * across, c - 100.0 * along + 3.5 * across}},
+          std::vector<polygon_edge>{{0, 1}, {0, 3}});
+    }
     // Through text, as the tools do.
     const plan_input back = capture::plan_input_from_json(nlohmann::json::parse(capture::to_json(in).dump()));
     const plan_result a = plan(in);
@@ -27,6 +40,13 @@ TEST(plan_input_json, a_saved_input_plans_to_the_same_result_bit_for_bit) {
     EXPECT_EQ(a.command, b.command);
     EXPECT_EQ(a.forecast_index, b.forecast_index);
     EXPECT_EQ(a.work.bound_checks, b.work.bound_checks);
+    EXPECT_EQ(a.on_drivable_area, b.on_drivable_area);
+    ASSERT_EQ(back.drivable_area != nullptr, in.drivable_area != nullptr);
+    if (in.drivable_area) {
+      EXPECT_TRUE(a.on_drivable_area) << "the road binds the ego";
+      EXPECT_EQ(back.drivable_area->polygons(), in.drivable_area->polygons());
+      EXPECT_EQ(back.drivable_area->open_edges(), in.drivable_area->open_edges());
+    }
     EXPECT_EQ(capture::to_json(back), capture::to_json(in)) << "a second round trip changes nothing";
   }
 }

@@ -1,7 +1,9 @@
 #include "mm/plan_input_json.hpp"
 
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace mm::capture {
 namespace {
@@ -52,7 +54,7 @@ nlohmann::json to_json(const plan_input& in) {
     obstacles.push_back({{"id", track.id}, {"kind", std::string(to_string(track.kind))},
                          {"shape", shape_json(track.shape)}, {"history", history}});
   }
-  return {
+  nlohmann::json result = {
       {"time", in.time},
       {"ego",
        {{"pose", pose_json(in.ego.pose)},
@@ -84,6 +86,18 @@ nlohmann::json to_json(const plan_input& in) {
         {"max_exhaustive_assignments", c.max_exhaustive_assignments},
         {"record_samples", c.record_samples},
         {"map_column", c.map_column}}}};
+  if (in.drivable_area) {
+    nlohmann::json polygons = nlohmann::json::array();
+    for (const std::vector<vec2>& polygon : in.drivable_area->polygons()) {
+      nlohmann::json points = nlohmann::json::array();
+      for (const vec2 v : polygon) points.push_back({v.x, v.y});
+      polygons.push_back(points);
+    }
+    nlohmann::json open = nlohmann::json::array();
+    for (const polygon_edge& e : in.drivable_area->open_edges()) open.push_back({e.polygon, e.edge});
+    result["drivable_area"] = {{"polygons", polygons}, {"open_edges", open}};
+  }
+  return result;
 }
 
 plan_input plan_input_from_json(const nlohmann::json& j) {
@@ -143,6 +157,17 @@ plan_input plan_input_from_json(const nlohmann::json& j) {
   config.record_samples = c.at("record_samples").get<bool>();
   // Inputs saved before the key existed planned the whole column.
   config.map_column = c.contains("map_column") ? c.at("map_column").get<bool>() : true;
+  if (j.contains("drivable_area")) {
+    const nlohmann::json& area = j.at("drivable_area");
+    std::vector<std::vector<vec2>> polygons;
+    for (const nlohmann::json& polygon : area.at("polygons")) {
+      std::vector<vec2>& points = polygons.emplace_back();
+      for (const nlohmann::json& v : polygon) points.push_back({v.at(0).get<double>(), v.at(1).get<double>()});
+    }
+    std::vector<polygon_edge> open;
+    for (const nlohmann::json& e : area.at("open_edges")) open.push_back({e.at(0).get<std::size_t>(), e.at(1).get<std::size_t>()});
+    in.drivable_area = std::make_shared<const drivable_area>(std::move(polygons), open);
+  }
   return in;
 }
 
