@@ -305,7 +305,7 @@ class mapper {
     for (const road& each : result_.roads) add_to_drivable_area(road_polygons(each));
     if (result_.roundabout) {
       const mm::sim::roundabout& ring = result_.roundabout->ring;
-      if (!(default_lane_width < 2.0 * std::min(ring.radius, ring.connection_radius))) {
+      if (!(default_lane_width < mm::sim::widest_lane(ring))) {
         refuse("the roundabout's 3.5 m lanes need radius_m and connection_radius_m above 1.75 m; give the drivable "
                "area in the file (drivable_area: {roundabout: {lane_width_m: W}})");
       }
@@ -339,7 +339,7 @@ class mapper {
       fail_value(ctx_, f, "false, or a roundabout: block in the file (the drivable area is made of its lanes)");
     }
     const mm::sim::roundabout& ring = result_.roundabout->ring;
-    const double widest = 2.0 * std::min(ring.radius, ring.connection_radius);
+    const double widest = mm::sim::widest_lane(ring);
     if (!(lane_width < widest)) {
       fail_value(ctx_, width_field,
                  "a lane width below " + number_text(widest) +

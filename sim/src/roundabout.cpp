@@ -69,7 +69,6 @@ void append_exit(path& route, const roundabout& ring, const roundabout_arm& exit
   route.straight(exit.straight_length);
 }
 
-
 /// Appends to `outline` the lane `width` wide about `centre`: a quadrilateral {a − n, b − n, b + n,
 /// a + n} between consecutive cross-sections a and b (n: half the width along the left normal),
 /// one per straight and one per chord of an arc; the first one's start edge (3) is open when
@@ -112,13 +111,15 @@ path exit_piece(const roundabout& ring, const roundabout_arm& exit) {
 
 }  // namespace
 
+double widest_lane(const roundabout& ring) { return 2.0 * std::min(ring.radius, ring.connection_radius); }
+
 mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width) {
   check(ring);
   for (const roundabout_arm& arm : arms) check(ring, arm);
-  if (!(std::isfinite(lane_width) && lane_width > 0.0 && lane_width < 2.0 * std::min(ring.radius, ring.connection_radius))) {
+  if (!(std::isfinite(lane_width) && lane_width > 0.0 && lane_width < widest_lane(ring))) {
     throw std::invalid_argument("roundabout: lane width = " + std::to_string(lane_width) +
                                 ": expected above 0 and below twice the smaller of radius and connection_radius (" +
-                                std::to_string(2.0 * std::min(ring.radius, ring.connection_radius)) + ")");
+                                std::to_string(widest_lane(ring)) + ")");
   }
   mm::drivable_outline outline;
   add_lane(outline, path::circular_arc(ring.center, ring.radius, 0.0, 2.0 * pi), lane_width, false, false);

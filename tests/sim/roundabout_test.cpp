@@ -117,12 +117,8 @@ struct s2_geometry {
 /// The nearest distance [m] from `p` to the area's boundary.
 double boundary_distance(const mm::drivable_area& area, vec2 p) {
   double nearest = std::numeric_limits<double>::infinity();
-  for (const mm::segment& s : area.boundary()) {
-    const vec2 d = s.b - s.a;
-    const double t = std::clamp(mm::dot(p - s.a, d) / mm::dot(d, d), 0.0, 1.0);
-    nearest = std::min(nearest, mm::norm(p - (s.a + t * d)));
-  }
-  return nearest;
+  for (const mm::segment& s : area.boundary()) nearest = std::min(nearest, mm::squared_distance_to_segment(p, s.a, s.b));
+  return std::sqrt(nearest);
 }
 
 TEST(sim_roundabout, the_lanes_hold_every_route_with_half_a_lane_either_side) {
@@ -144,7 +140,9 @@ TEST(sim_roundabout, the_lanes_hold_every_route_with_half_a_lane_either_side) {
           // The boundary is half a lane away, less the chords' error, also where a merging lane's
           // edge meets the ring's tangentially (the ring's edge runs on inside the merging lane).
           if (lateral == 0.0) {
-            ASSERT_GT(boundary_distance(area, q), 0.5 * w - roundabout_lane_chord_error - 1e-9) << "entry " << entry << ", exit " << exit << ", s = " << s << " of " << route.length() << " (" << q.x << ", " << q.y << ")";
+            ASSERT_GT(boundary_distance(area, q), 0.5 * w - roundabout_lane_chord_error - 1e-9)
+                << "entry " << entry << ", exit " << exit << ", s = " << s << " of " << route.length() << " (" << q.x
+                << ", " << q.y << ")";
           }
         }
       }

@@ -70,6 +70,10 @@ path roundabout_ring(const roundabout& ring, double start_angle, double sweep);
 /// 1 cm a plan of S2 on its lanes took about twice as long; docs/method.md §5 item 16).
 inline constexpr double roundabout_lane_chord_error = 0.05;
 
+/// The bound a lane's width [m] must stay below for `roundabout_lanes`: 2·min(R, r), beyond which
+/// the inner edge of the ring or of a connecting arc would turn inside out.
+double widest_lane(const roundabout& ring);
+
 /// The lanes of a roundabout as a drivable area (spec §5's road constraint, docs/method.md §5
 /// item 16): the circulating lane, the annulus R ± w/2 about C, and for every arm its entry lane and
 /// its exit lane (their straights and connecting arcs), each w = `lane_width` [m] wide about its
@@ -79,8 +83,8 @@ inline constexpr double roundabout_lane_chord_error = 0.05;
 /// leads on (an open edge: a vehicle may drive off the drawn arm). With w = 2o (o the arm's lane
 /// offset) an arm's two lanes meet along its axis.
 ///
-/// Throws std::invalid_argument unless 0 < w < 2·min(R, r) (r the connecting arcs' radius: the
-/// inner edge of a narrower curve would turn inside out) and every arm is valid (as `merge_angle`).
+/// Throws std::invalid_argument unless 0 < w < `widest_lane(ring)` and every arm is valid (as
+/// `merge_angle`).
 mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width);
 
 }  // namespace mm::sim
