@@ -18,11 +18,11 @@ namespace {
 /// projection on the line within the segment, h_e ≤ e·(c − a) ≤ |b − a| − h_e, where
 /// h_n = l|n·x| + w|n·y| and h_e = l|e·x| + w|e·y| are its half extents along n and e, its nearest
 /// point to the line is nearest to the segment too: the distance is |n·(c − a)| − h_n.
-double rectangle_signed_distance(const placed_footprint& f, const segment& s) {
-  if (const segment_line line(s); line.length > 0.0) {
+double rectangle_signed_distance(const placed_footprint& f, const segment_line& line) {
+  if (line.length > 0.0) {
     const vec2 e = line.direction;
     const double h_e = f.half_length * std::abs(dot(e, f.axis)) + f.half_width * std::abs(cross(e, f.axis));
-    const double x = dot(e, f.centre - s.a);
+    const double x = dot(e, f.centre - line.a);
     // |n·(c − a)| − h_n − radius, the radius 0 for a rectangle.
     const double gap = line_distance_bound(f, line);
     if (gap + f.radius >= 0.0 && x >= h_e && x <= line.length - h_e) return gap;
@@ -31,8 +31,8 @@ double rectangle_signed_distance(const placed_footprint& f, const segment& s) {
     const vec2 d = p - f.centre;
     return vec2{dot(d, f.axis), cross(f.axis, d)};
   };
-  const vec2 p = local(s.a);
-  const vec2 q = local(s.b);
+  const vec2 p = local(line.a);
+  const vec2 q = local(line.b);
   const double hl = f.half_length;
   const double hw = f.half_width;
   const vec2 along = q - p;
@@ -60,8 +60,25 @@ double rectangle_signed_distance(const placed_footprint& f, const segment& s) {
     const double dy = std::max(std::abs(v.y) - hw, 0.0);
     return dx * dx + dy * dy;
   };
+  // A corner on the far side of a face's line from the whole segment is farther from every point of
+  // it than the face's other end, by at least twice the rectangle's width or length along it: it is
+  // not asked (a short edge beside the car leaves two corners, or one, or none).
   double best = std::min(box_distance2(p), box_distance2(q));
+  const bool above = y_lo >= hw;
+  const bool below = y_hi <= -hw;
+  const bool ahead = x_lo >= hl;
+  const bool behind = x_hi <= -hl;
+  const bool in_slab_x = x_lo >= -hl && x_hi <= hl;
+  const bool in_slab_y = y_lo >= -hw && y_hi <= hw;
+  if ((in_slab_x && (above || below)) || (in_slab_y && (ahead || behind))) {
+    // Within one face's slab: the nearest point of the segment to the face's line is an end.
+    return std::sqrt(best) - f.radius;
+  }
   for (const vec2 corner : {vec2{hl, hw}, vec2{-hl, hw}, vec2{-hl, -hw}, vec2{hl, -hw}}) {
+    if ((above && corner.y < 0.0) || (below && corner.y > 0.0) || (ahead && corner.x < 0.0) ||
+        (behind && corner.x > 0.0)) {
+      continue;
+    }
     best = std::min(best, squared_distance_to_segment(corner, p, q));
   }
   return std::sqrt(best) - f.radius;
@@ -261,6 +278,8 @@ drivable_area::drivable_area(std::vector<std::vector<vec2>> polygons, const std:
       first_of_edge = boundary_.size() - 1;
     }
   }
+  boundary_lines_.reserve(boundary_.size());
+  for (const segment& s : boundary_) boundary_lines_.emplace_back(s);
 }
 
 bool drivable_area::contains(vec2 p) const {
@@ -273,8 +292,13 @@ bool drivable_area::contains(vec2 p) const {
 }
 
 double signed_distance(const placed_footprint& f, const segment& s) {
-  if (f.is_rectangle) return rectangle_signed_distance(f, s);
+  if (f.is_rectangle) return rectangle_signed_distance(f, segment_line(s));
   return signed_distance_reference(f, s);
+}
+
+double signed_distance(const placed_footprint& f, const segment_line& line) {
+  if (f.is_rectangle) return rectangle_signed_distance(f, line);
+  return signed_distance_reference(f, line.segment_of());
 }
 
 double signed_distance_reference(const placed_footprint& f, const segment& s) {
@@ -286,7 +310,7 @@ double signed_distance_reference(const placed_footprint& f, const segment& s) {
   return signed_distance(f, edge);
 }
 
-segment_line::segment_line(const segment& s) : a(s.a), length(norm(s.b - s.a)) {
+segment_line::segment_line(const segment& s) : a(s.a), b(s.b), length(norm(s.b - s.a)) {
   if (length > 0.0) direction = (1.0 / length) * (s.b - s.a);
 }
 
@@ -297,28 +321,49 @@ double line_distance_bound(const placed_footprint& f, const segment_line& line) 
   return std::abs(cross(e, f.centre - line.a)) - h_n - f.radius;
 }
 
-double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap) {
-  // A disc about the core's vertex mean that holds the footprint: a segment farther than the best so
-  // far from it cannot lower the minimum, which is then the same as over every segment.
+namespace {
+
+/// A disc that holds a footprint: about a rectangle's centre, or a polygon's vertex mean [m].
+struct bounding_disc {
   vec2 centre;
   double radius = 0.0;
+};
+
+bounding_disc disc_around(const placed_footprint& f) {
   if (f.is_rectangle) {
-    centre = f.centre;
-    radius = std::sqrt(f.half_length * f.half_length + f.half_width * f.half_width) * (1.0 + 1e-12) + f.radius;
-  } else {
-    for (std::size_t i = 0; i < f.vertex_count; ++i) centre = centre + f.vertices[i];
-    centre = (1.0 / static_cast<double>(f.vertex_count)) * centre;
-    for (std::size_t i = 0; i < f.vertex_count; ++i) radius = std::max(radius, norm(f.vertices[i] - centre));
-    radius = radius + f.radius;
+    return {f.centre, std::sqrt(f.half_length * f.half_length + f.half_width * f.half_width) * (1.0 + 1e-12) + f.radius};
   }
+  vec2 centre;
+  for (std::size_t i = 0; i < f.vertex_count; ++i) centre = centre + f.vertices[i];
+  centre = (1.0 / static_cast<double>(f.vertex_count)) * centre;
+  double radius = 0.0;
+  for (std::size_t i = 0; i < f.vertex_count; ++i) radius = std::max(radius, norm(f.vertices[i] - centre));
+  return {centre, radius + f.radius};
+}
+
+/// min(best, the signed distance of `f` to `line`): a segment farther than the best so far from the
+/// line's bound or the disc cannot lower the minimum, and is not asked.
+double lowered(const placed_footprint& f, const bounding_disc& disc, const segment_line& line, double best) {
+  const double slack = 1e-9 * (1.0 + std::abs(best));
+  if (line_distance_bound(f, line) > best + slack) return best;
+  const double far = std::sqrt(squared_distance_to_segment(disc.centre, line.a, line.b)) - disc.radius;
+  if (far > best + slack) return best;
+  return std::min(best, signed_distance(f, line));
+}
+
+}  // namespace
+
+double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap) {
+  const bounding_disc disc = disc_around(f);
   double best = cap;
-  for (const segment& s : boundary) {
-    const double slack = 1e-9 * (1.0 + std::abs(best));
-    if (line_distance_bound(f, segment_line(s)) > best + slack) continue;
-    const double far = std::sqrt(squared_distance_to_segment(centre, s.a, s.b)) - radius;
-    if (far > best + slack) continue;
-    best = std::min(best, signed_distance(f, s));
-  }
+  for (const segment& s : boundary) best = lowered(f, disc, segment_line(s), best);
+  return best;
+}
+
+double boundary_clearance(std::span<const segment_line> boundary, const placed_footprint& f, double cap) {
+  const bounding_disc disc = disc_around(f);
+  double best = cap;
+  for (const segment_line& line : boundary) best = lowered(f, disc, line, best);
   return best;
 }
 

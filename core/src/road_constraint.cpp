@@ -40,7 +40,7 @@ double road_time_step(const ego_state& ego, const collision_window& window) {
 
 bool starts_on_drivable_area(const drivable_area& area, const ego_state& ego) {
   if (!area.contains(ego.pose.position)) return false;
-  return boundary_clearance(area.boundary(), place(ego.shape, ego.pose), 1.0) > 0.0;
+  return boundary_clearance(area.boundary_lines(), place(ego.shape, ego.pose), 1.0) > 0.0;
 }
 
 double road_clearance(const drivable_area& area, const ego_state& ego, const maneuver& u,
@@ -64,7 +64,7 @@ bool stays_on_drivable_area(const drivable_area& area, const ego_state& ego, con
                             const collision_window& window, double resolution) {
   const double rate = largest_point_speed(ego, u, window.horizon);
   const auto clearance = [&](double t) {
-    return boundary_clearance(area.boundary(), placed(ego, placement_of(ego, u, t, window)),
+    return boundary_clearance(area.boundary_lines(), placed(ego, placement_of(ego, u, t, window)),
                               std::numeric_limits<double>::infinity());
   };
   double t = 0.0;
@@ -95,12 +95,14 @@ road_field::road_field(const ego_sweep& sweep, const drivable_area& area, double
   // Segments farther from the start than the reach by T_h, the footprint's radius and the cap are
   // farther than the cap from every placement: they cannot lower a clamped clearance.
   const double near = sweep.straight_reach().base + bounding_radius(ego.shape) + cap + rounding_slack;
-  for (const segment& s : area.boundary()) {
-    if (segment_distance(ego.pose.position, s) <= near) near_.push_back(s);
+  for (const segment_line& s : area.boundary_lines()) {
+    if (segment_distance(ego.pose.position, s.segment_of()) <= near) near_.push_back(s);
   }
   const std::vector<double>& times = sweep.times();
   while (sampled_times_ < times.size() && times[sampled_times_] < sweep.window().horizon) ++sampled_times_;
   if (near_.empty()) return;  // nothing within reach: every sample stays on the road
+  footprint_radius_ = bounding_radius(ego.shape) * (1.0 + 1e-12) + rounding_slack;
+  footprint_reach_squared_ = footprint_radius_ * footprint_radius_;
 
   std::vector<std::uint32_t> all(near_.size());
   for (std::uint32_t j = 0; j < all.size(); ++j) all[j] = j;
@@ -125,15 +127,20 @@ void road_field::decide(std::uint32_t b, std::span<const std::uint32_t> times, s
   const std::vector<std::uint32_t>& order = sweep_.order();
   const ego_state& ego = sweep_.ego();
   if (block.end - block.begin == 1) {
-    // One sample: off the road at the first time its footprint reaches the boundary.
+    // One sample: off the road at the first time its footprint reaches the boundary. A segment whose
+    // lower bound is positive cannot be reached then.
     for (const std::uint32_t r : times) {
       ++bound_checks_;
-      const placed_footprint f = placed(ego, at(r, block.centre));
-      double value = cap_;
-      for (const std::uint32_t j : segments) value = std::min(value, signed_distance(f, near_[j]));
-      if (!(value > 0.0)) {
-        collisions_.set(block.centre);
-        return;
+      const placement p = at(r, block.centre);
+      const placed_footprint f = placed(ego, p);
+      for (const std::uint32_t j : segments) {
+        const segment_line& s = near_[j];
+        if (line_distance_bound(f, s) > rounding_slack) continue;
+        if (squared_distance_to_segment(p.position, s.a, s.b) > footprint_reach_squared_) continue;
+        if (!(signed_distance(f, s) > 0.0)) {
+          collisions_.set(block.centre);
+          return;
+        }
       }
     }
     return;
@@ -188,8 +195,24 @@ double road_field::exact(std::size_t m) {
   // The smallest so far caps the next time's: `boundary_clearance` is min(cap, …), so the minimum is
   // the same, and segments that cannot lower it are not asked. The latest time first: a maneuver that
   // turns toward an edge is nearest it at T_h, and the earlier times then ask few segments.
+  // Only the segments within the cap and the footprint's radius of the box of the sample's reference
+  // points over the road times can be nearer than the cap at one of them.
+  vec2 lo = at(0, m).position;
+  vec2 hi = lo;
+  for (std::size_t r = 1; r <= sampled_times_; ++r) {
+    const vec2 q = at(r, m).position;
+    lo = {std::min(lo.x, q.x), std::min(lo.y, q.y)};
+    hi = {std::max(hi.x, q.x), std::max(hi.y, q.y)};
+  }
+  const double reach = cap_ + footprint_radius_;
+  candidates_.clear();
+  for (const segment_line& s : near_) {
+    const double gap_x = std::max({std::min(s.a.x, s.b.x) - hi.x, lo.x - std::max(s.a.x, s.b.x), 0.0});
+    const double gap_y = std::max({std::min(s.a.y, s.b.y) - hi.y, lo.y - std::max(s.a.y, s.b.y), 0.0});
+    if (gap_x * gap_x + gap_y * gap_y <= reach * reach) candidates_.push_back(s);
+  }
   double value = cap_;
-  for (std::size_t r = sampled_times_ + 1; r-- > 0;) value = boundary_clearance(near_, placed(ego, at(r, m)), value);
+  for (std::size_t r = sampled_times_ + 1; r-- > 0;) value = boundary_clearance(candidates_, placed(ego, at(r, m)), value);
   values_[m] = clamped(value, cap_);
   exact_[m] = 1;
   return values_[m];

@@ -143,5 +143,27 @@ TEST(drivable_area, the_boundary_clearance_is_the_nearest_segment_s_and_capped) 
   EXPECT_LT(boundary_clearance(road.boundary(), across, 2.0), 0.0) << "a car across a 3.5 m road crosses its edges";
 }
 
+TEST(drivable_area, the_boundary_s_lines_are_its_segments_and_give_the_same_clearances_bit_for_bit) {
+  const drivable_area area({box(-100.0, -1.75, 100.0, 1.75), box(20.0, -50.0, 23.5, 50.0)});
+  ASSERT_EQ(area.boundary_lines().size(), area.boundary().size());
+  for (std::size_t i = 0; i < area.boundary().size(); ++i) {
+    const segment& s = area.boundary()[i];
+    const segment_line& line = area.boundary_lines()[i];
+    EXPECT_EQ(line.a, s.a);
+    EXPECT_EQ(line.b, s.b);
+    EXPECT_NEAR(line.length, norm(s.b - s.a), 1e-12);
+    EXPECT_NEAR(norm(line.direction), 1.0, 1e-12);
+  }
+  for (double x = -5.0; x <= 30.0; x += 0.7) {
+    for (const double heading : {0.0, 0.4, 1.3, 2.9}) {
+      const placed_footprint car = place(rectangle{4.5, 1.8}, {{x, 0.3 * std::sin(x)}, heading});
+      for (const double cap : {0.5, 2.0, std::numeric_limits<double>::infinity()}) {
+        EXPECT_EQ(boundary_clearance(area.boundary_lines(), car, cap), boundary_clearance(area.boundary(), car, cap))
+            << "x " << x << " heading " << heading << " cap " << cap;
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace mm

@@ -134,6 +134,7 @@ TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_
   const std::size_t count = testing::property_count(20000);
   std::size_t crossing = 0;
   std::size_t beside = 0;  // road edges beside the rectangle: the closed form of a line's distance
+  std::size_t in_slab = 0;  // short edges beside a face, both ends in its slab: the nearer end's distance
   for (std::size_t trial = 0; trial < count; ++trial) {
     const rectangle shape{0.5 + 5.0 * unit(rng), 0.3 + 2.5 * unit(rng)};
     const placed_footprint f = place(shape, {{4.0 * unit(rng) - 2.0, 4.0 * unit(rng) - 2.0}, 7.0 * unit(rng)});
@@ -153,6 +154,16 @@ TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_
     const segment s{a, b};
     const double fast = signed_distance(f, s);
     const double reference = signed_distance_reference(f, s);
+    ASSERT_EQ(signed_distance(f, segment_line(s)), fast) << "with the line computed before";
+    const auto local = [&](vec2 p) { return vec2{dot(p - f.centre, f.axis), cross(f.axis, p - f.centre)}; };
+    const vec2 p = local(a);
+    const vec2 q = local(b);
+    const auto beyond = [](double u, double v, double h) { return (u >= h && v >= h) || (u <= -h && v <= -h); };
+    const auto within = [](double u, double v, double h) { return std::abs(u) <= h && std::abs(v) <= h; };
+    in_slab += (within(p.x, q.x, f.half_length) && beyond(p.y, q.y, f.half_width)) ||
+                       (within(p.y, q.y, f.half_width) && beyond(p.x, q.x, f.half_length))
+                   ? 1
+                   : 0;
     ASSERT_LE(line_distance_bound(f, segment_line(s)), reference + 1e-12 * (1.0 + std::abs(reference)))
         << "the line's bound above the distance";
     ASSERT_NEAR(fast, reference, 1e-12 * (1.0 + std::abs(reference)))
@@ -164,6 +175,7 @@ TEST(road_constraint, a_rectangle_s_signed_distance_to_a_segment_is_that_of_the_
   EXPECT_GT(crossing, count / 10);
   EXPECT_LT(crossing, count - count / 10);
   EXPECT_GT(beside, count / 20);
+  EXPECT_GT(in_slab, count / 200);
 }
 
 TEST(road_constraint, a_maneuver_proven_to_stay_on_the_road_stays_on_it_at_every_tenth_of_a_millisecond) {

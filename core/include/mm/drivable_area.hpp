@@ -17,6 +17,18 @@ struct segment {
   vec2 b;
 };
 
+/// A segment with its line, for `line_distance_bound` and the distances that ask a segment many
+/// times: its ends, its unit direction (zero for a point segment, which has no line) and its length
+/// [m], computed once.
+struct segment_line {
+  vec2 a;
+  vec2 b;
+  vec2 direction;
+  double length = 0.0;
+  explicit segment_line(const segment& s);
+  segment segment_of() const { return {a, b}; }
+};
+
 /// Edge `edge` of polygon `polygon`: from its vertex `edge` to the next (the last to the first).
 struct polygon_edge {
   std::size_t polygon = 0;
@@ -78,6 +90,9 @@ class drivable_area {
   const std::vector<std::vector<vec2>>& polygons() const { return polygons_; }
   const std::vector<polygon_edge>& open_edges() const { return open_edges_; }
   const std::vector<segment>& boundary() const { return boundary_; }
+  /// The boundary's segments with their lines (`segment_line`), in the same order: what the distance
+  /// tests that ask every segment many times take, computed once.
+  const std::vector<segment_line>& boundary_lines() const { return boundary_lines_; }
 
   /// True when `p` lies in one of the polygons (even-odd rule; on an edge counts as either).
   bool contains(vec2 p) const;
@@ -91,6 +106,7 @@ class drivable_area {
   std::vector<polygon_edge> open_edges_;
   std::vector<box> boxes_;
   std::vector<segment> boundary_;
+  std::vector<segment_line> boundary_lines_;
 };
 
 /// Signed distance [m] of a placed footprint to a segment: the gap when apart, minus the
@@ -98,15 +114,8 @@ class drivable_area {
 /// footprint's core; the footprint's radius subtracted. Continuous, and no more than d apart for two
 /// placements whose points are no more than d apart.
 double signed_distance(const placed_footprint& f, const segment& s);
-
-/// A segment's line, for `line_distance_bound`: its start, its unit direction (zero for a point
-/// segment, which has no line) and its length [m].
-struct segment_line {
-  vec2 a;
-  vec2 direction;
-  double length = 0.0;
-  explicit segment_line(const segment& s);
-};
+/// `signed_distance(f, line.segment_of())` bit for bit, without computing the line again.
+double signed_distance(const placed_footprint& f, const segment_line& line);
 
 /// A lower bound of `signed_distance(f, s)` [m], cheap and tight for a road's edge beside a car:
 /// for a rectangle, its signed distance to the segment's line, |n·(c − a)| − h_n − radius, with n
@@ -124,5 +133,8 @@ double signed_distance_reference(const placed_footprint& f, const segment& s);
 /// or crosses one. min(cap, min over the segments of `signed_distance`), exactly: segments that
 /// cannot lower it are not asked.
 double boundary_clearance(std::span<const segment> boundary, const placed_footprint& f, double cap);
+/// `boundary_clearance` of the segments of `boundary` bit for bit, their lines computed before
+/// (`drivable_area::boundary_lines`).
+double boundary_clearance(std::span<const segment_line> boundary, const placed_footprint& f, double cap);
 
 }  // namespace mm

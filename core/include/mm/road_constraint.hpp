@@ -94,7 +94,11 @@ class road_field {
 
   const ego_sweep& sweep_;
   double cap_;
-  std::vector<segment> near_;
+  std::vector<segment_line> near_;
+  /// The footprint's bounding radius about its reference point, rounded up, and its square [m, m²]:
+  /// no point of the footprint is farther from the centre.
+  double footprint_radius_ = 0.0;
+  double footprint_reach_squared_ = 0.0;
   std::size_t sampled_times_ = 0;  ///< the sweep's sample times before T_h; road time r = sampled_times_ is T_h
   sample_mask collisions_;
   std::vector<double> values_;
@@ -107,6 +111,7 @@ class road_field {
     std::vector<double> reach;      ///< [time]: nearest + twice the spread
   };
   std::vector<level> levels_;
+  std::vector<segment_line> candidates_;  ///< `exact`'s scratch: the segments near one sample's path
   std::size_t bound_checks_ = 0;
 };
 
