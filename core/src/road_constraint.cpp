@@ -63,9 +63,22 @@ clearance_set road_clearances_reference(const drivable_area& area, const ego_sta
 bool stays_on_drivable_area(const drivable_area& area, const ego_state& ego, const maneuver& u,
                             const collision_window& window, double resolution) {
   const double rate = largest_point_speed(ego, u, window.horizon);
+  // Every footprint of the maneuver within T_h lies within its arc length by T_h and the footprint's
+  // radius of the start: a segment more than `apart` [m] farther than that from the start is farther
+  // than `apart` from each. The segments nearer give the clearance exactly where it is below `apart`;
+  // elsewhere every segment is asked.
+  constexpr double apart = 5.0;
+  const double reach = travelled_distance(ego.speed, u.acceleration, window.horizon, ego.limits.speed_cap) +
+                       bounding_radius(ego.shape) * (1.0 + 1e-12) + apart + rounding_slack;
+  std::vector<segment_line> near;
+  for (const segment_line& s : area.boundary_lines()) {
+    if (squared_distance_to_segment(ego.pose.position, s.a, s.b) <= reach * reach) near.push_back(s);
+  }
   const auto clearance = [&](double t) {
-    return boundary_clearance(area.boundary_lines(), placed(ego, placement_of(ego, u, t, window)),
-                              std::numeric_limits<double>::infinity());
+    const placed_footprint f = placed(ego, placement_of(ego, u, t, window));
+    const double value = boundary_clearance(near, f, std::numeric_limits<double>::infinity());
+    if (value < apart) return value;
+    return boundary_clearance(area.boundary_lines(), f, std::numeric_limits<double>::infinity());
   };
   double t = 0.0;
   while (true) {
@@ -102,14 +115,8 @@ road_field::road_field(const ego_sweep& sweep, const drivable_area& area, double
   while (sampled_times_ < times.size() && times[sampled_times_] < sweep.window().horizon) ++sampled_times_;
   if (near_.empty()) return;  // nothing within reach: every sample stays on the road
   footprint_radius_ = bounding_radius(ego.shape) * (1.0 + 1e-12) + rounding_slack;
-  footprint_reach_squared_ = footprint_radius_ * footprint_radius_;
 
-  std::vector<std::uint32_t> all(near_.size());
-  for (std::uint32_t j = 0; j < all.size(); ++j) all[j] = j;
-  std::vector<std::uint32_t> every_time(sampled_times_ + 1);
-  for (std::uint32_t r = 0; r < every_time.size(); ++r) every_time[r] = r;
-  levels_.reserve(64);
-  for (const std::uint32_t root : sweep.roots()) decide(root, every_time, all, 0);
+  decide();
   collisions_.for_each([&](std::size_t m) { values_[m] = -cap_; });
 }
 
@@ -117,76 +124,117 @@ placement road_field::at(std::size_t r, std::size_t m) const {
   return r < sampled_times_ ? sweep_.at(r, m) : sweep_.placement_at(m, sweep_.window().horizon);
 }
 
-double road_field::spread(std::uint32_t b, std::size_t r) const {
-  return r < sampled_times_ ? sweep_.block_spread(sweep_.block_of(b), r) : sweep_.straight_spread(b).base;
+namespace {
+
+/// The index of `value` in `values`, appended when new; `guess` is tried first (the samples come in
+/// rows and columns, so the previous sample's neighbour usually matches).
+std::uint32_t index_of(std::vector<double>& values, double value, std::uint32_t guess) {
+  for (const std::uint32_t g : {guess, guess + 1}) {
+    if (g < values.size() && values[g] == value) return g;
+  }
+  for (std::uint32_t i = 0; i < values.size(); ++i) {
+    if (values[i] == value) return i;
+  }
+  values.push_back(value);
+  return static_cast<std::uint32_t>(values.size() - 1);
 }
 
-void road_field::decide(std::uint32_t b, std::span<const std::uint32_t> times, std::span<const std::uint32_t> segments,
-                        std::size_t depth) {
-  const ego_sweep::block& block = sweep_.block_of(b);
-  const std::vector<std::uint32_t>& order = sweep_.order();
+}  // namespace
+
+void road_field::decide() {
+  const maneuver_samples& samples = sweep_.samples();
   const ego_state& ego = sweep_.ego();
-  if (block.end - block.begin == 1) {
-    // One sample: off the road at the first time its footprint reaches the boundary. A segment whose
-    // lower bound is positive cannot be reached then.
-    for (const std::uint32_t r : times) {
-      ++bound_checks_;
-      const placement p = at(r, block.centre);
-      const placed_footprint f = placed(ego, p);
-      for (const std::uint32_t j : segments) {
-        const segment_line& s = near_[j];
-        if (line_distance_bound(f, s) > rounding_slack) continue;
-        if (squared_distance_to_segment(p.position, s.a, s.b) > footprint_reach_squared_) continue;
-        if (!(signed_distance(f, s) > 0.0)) {
-          collisions_.set(block.centre);
-          return;
-        }
+  const std::vector<double>& times = sweep_.times();
+  const std::size_t road_times = sampled_times_ + 1;
+  // The samples' rows (accelerations) and columns (curvatures), and each row's arc length at each
+  // road time: before T_h a sample's placement is the arc placement of its curvature at that arc
+  // length (`arc_placement`).
+  std::vector<double> accelerations;
+  std::vector<double> curvatures;
+  row_of_.resize(samples.size());
+  column_of_.resize(samples.size());
+  std::uint32_t row = 0;
+  std::uint32_t column = 0;
+  for (std::size_t m = 0; m < samples.size(); ++m) {
+    row = index_of(accelerations, samples.maneuvers[m].acceleration, row);
+    column = index_of(curvatures, samples.maneuvers[m].curvature, column);
+    row_of_[m] = row;
+    column_of_[m] = column;
+  }
+  arc_.resize(accelerations.size() * road_times);
+  for (std::size_t i = 0; i < accelerations.size(); ++i) {
+    for (std::size_t r = 0; r < road_times; ++r) {
+      const double t = r < sampled_times_ ? times[r] : sweep_.window().horizon;
+      arc_[i * road_times + r] = travelled_distance(ego.speed, accelerations[i], t, ego.limits.speed_cap);
+    }
+  }
+  lipschitz_.resize(curvatures.size());
+  for (std::size_t c = 0; c < curvatures.size(); ++c) lipschitz_[c] = 1.0 + std::abs(curvatures[c]) * footprint_radius_;
+  evaluations_.resize(curvatures.size());
+  for (std::vector<evaluation>& e : evaluations_) e.clear();
+  // Per column, the stretches of arc length proven clear of the boundary or across it, disjoint and
+  // in order. A clearance c at arc length s proves |c|/L either side of s, L = 1 + |κ| R: moving
+  // along the arc by Δs moves no point of the footprint farther than L·|Δs|.
+  proofs_.resize(curvatures.size());
+  for (std::vector<proven>& p : proofs_) p.clear();
+  for (std::size_t m = 0; m < samples.size(); ++m) {
+    std::vector<proven>& proofs = proofs_[column_of_[m]];
+    const double lipschitz = lipschitz_[column_of_[m]];
+    const double* s_at = arc_.data() + row_of_[m] * road_times;
+    for (std::size_t r = 0; r < road_times; ++r) {
+      const double s = s_at[r];
+      auto next = std::upper_bound(proofs.begin(), proofs.end(), s, [](double v, const proven& p) { return v < p.lo; });
+      if (next != proofs.begin() && s <= std::prev(next)->hi) {
+        if (!std::prev(next)->off) continue;
+        collisions_.set(m);
+        break;
       }
-    }
-    return;
-  }
-  if (levels_.size() <= depth) levels_.resize(depth + 1);
-  level& mine = levels_[depth];
-  mine.times.clear();
-  mine.distances.resize(times.size() * segments.size());
-  mine.reach.clear();
-  // Every point of a sample's footprint lies within the spread of the centre's: its signed distance
-  // to each segment within the spread of the centre's. A time at which the centre is farther than
-  // the spread from every segment is decided clear for the whole block; one at which it is across
-  // by more than the spread puts every sample of the block off the road.
-  for (std::size_t t = 0; t < times.size(); ++t) {
-    const std::uint32_t r = times[t];
-    ++bound_checks_;
-    const placed_footprint f = placed(ego, at(r, block.centre));
-    double* d = mine.distances.data() + mine.times.size() * segments.size();
-    double nearest = cap_;
-    for (std::size_t j = 0; j < segments.size(); ++j) {
-      d[j] = signed_distance(f, near_[segments[j]]);
-      nearest = std::min(nearest, d[j]);
-    }
-    const double sigma = spread(b, r) + rounding_slack * (1.0 + std::abs(nearest));
-    if (nearest - sigma > 0.0) continue;
-    if (nearest + sigma <= 0.0) {
-      for (std::uint32_t p = block.begin; p < block.end; ++p) collisions_.set(order[p]);
-      return;
-    }
-    mine.times.push_back(r);
-    mine.reach.push_back(nearest + 2.0 * sigma);
-  }
-  if (mine.times.empty()) return;
-  // A segment more than twice the spread farther than the nearest, at every time left, cannot be
-  // the nearest of any sample of the block then: the halves do not ask it.
-  mine.segments.clear();
-  for (std::size_t j = 0; j < segments.size(); ++j) {
-    for (std::size_t t = 0; t < mine.times.size(); ++t) {
-      if (mine.distances[t * segments.size() + j] <= mine.reach[t]) {
-        mine.segments.push_back(segments[j]);
+      ++bound_checks_;
+      const double c = boundary_clearance(near_, placed(ego, at(r, m)), cap_);
+      std::vector<evaluation>& found = evaluations_[column_of_[m]];
+      found.insert(std::upper_bound(found.begin(), found.end(), s,
+                                    [](double v, const evaluation& e) { return v < e.arc_length; }),
+                   {s, c});
+      const bool off = !(c > 0.0);
+      const double width = (std::abs(c) - rounding_slack * (1.0 + std::abs(c))) / lipschitz * (1.0 - 1e-12);
+      if (width > 0.0) add_proof(proofs, {s - width, s + width, off});
+      if (off) {
+        collisions_.set(m);
         break;
       }
     }
   }
-  decide(b + 1, levels_[depth].times, levels_[depth].segments, depth + 1);
-  decide(block.second, levels_[depth].times, levels_[depth].segments, depth + 1);
+}
+
+double road_field::lower_bound_at(const std::vector<evaluation>& found, double s, double lipschitz) {
+  // The clearance is L-Lipschitz in the arc length (see `decide`): each evaluation bounds it below;
+  // the nearest on either side bound it most, up to where they are capped.
+  const auto next = std::upper_bound(found.begin(), found.end(), s,
+                                     [](double v, const evaluation& e) { return v < e.arc_length; });
+  double bound = -std::numeric_limits<double>::infinity();
+  if (next != found.end()) bound = next->clearance - lipschitz * (next->arc_length - s);
+  if (next != found.begin()) {
+    const evaluation& before = *std::prev(next);
+    bound = std::max(bound, before.clearance - lipschitz * (s - before.arc_length));
+  }
+  return bound;
+}
+
+void road_field::add_proof(std::vector<proven>& proofs, proven p) {
+  // Proofs of the two kinds never overlap (a stretch is not both clear and across); one of the same
+  // kind that overlaps is merged.
+  auto at_or_after = std::lower_bound(proofs.begin(), proofs.end(), p.lo, [](const proven& q, double v) { return q.lo < v; });
+  if (at_or_after != proofs.begin() && std::prev(at_or_after)->off == p.off && std::prev(at_or_after)->hi >= p.lo) {
+    --at_or_after;
+    p.lo = at_or_after->lo;
+    p.hi = std::max(p.hi, at_or_after->hi);
+    at_or_after = proofs.erase(at_or_after);
+  }
+  while (at_or_after != proofs.end() && at_or_after->off == p.off && at_or_after->lo <= p.hi) {
+    p.hi = std::max(p.hi, at_or_after->hi);
+    at_or_after = proofs.erase(at_or_after);
+  }
+  proofs.insert(at_or_after, p);
 }
 
 double road_field::exact(std::size_t m) {
@@ -211,8 +259,18 @@ double road_field::exact(std::size_t m) {
     const double gap_y = std::max({std::min(s.a.y, s.b.y) - hi.y, lo.y - std::max(s.a.y, s.b.y), 0.0});
     if (gap_x * gap_x + gap_y * gap_y <= reach * reach) candidates_.push_back(s);
   }
+  // A time at which a clearance `decide` found nearby on the sample's arc bounds the clearance above
+  // the smallest so far cannot lower it, and is not asked.
+  const std::vector<evaluation>* found = near_.empty() ? nullptr : &evaluations_[column_of_[m]];
+  const double lipschitz = near_.empty() ? 1.0 : lipschitz_[column_of_[m]];
   double value = cap_;
-  for (std::size_t r = sampled_times_ + 1; r-- > 0;) value = boundary_clearance(candidates_, placed(ego, at(r, m)), value);
+  for (std::size_t r = sampled_times_ + 1; r-- > 0;) {
+    if (found != nullptr) {
+      const double s = arc_[row_of_[m] * (sampled_times_ + 1) + r];
+      if (lower_bound_at(*found, s, lipschitz) > value + rounding_slack * (1.0 + std::abs(value))) continue;
+    }
+    value = boundary_clearance(candidates_, placed(ego, at(r, m)), value);
+  }
   values_[m] = clamped(value, cap_);
   exact_[m] = 1;
   return values_[m];

@@ -58,13 +58,17 @@ bool stays_on_drivable_area(const drivable_area& area, const ego_state& ego, con
 bool stays_on_drivable_area_reference(const drivable_area& area, const ego_state& ego, const maneuver& u,
                                       const collision_window& window, double resolution);
 
-/// The road clearances of a sweep's samples, fast (the road's `clearance_field`): which samples leave
-/// the road is decided with the sweep's tree of blocks — at a road sample time a block is clear, or
-/// off the road whole (and then decided for good), when its centre's clearance is farther from 0
-/// than the block's spread; its halves are asked only at the times left undecided, and only about
-/// the boundary segments that can be nearest for one of their samples then.
-/// Values are computed only where asked (`exact`), equal bit for bit to `road_clearances_reference`;
-/// elsewhere the set holds ±cap by the sign. Requires an ego that starts on the area.
+/// The road clearances of a sweep's samples, fast (the road's `clearance_field`). The boundary does
+/// not move, and before T_h a sample's placement depends only on its curvature κ and the arc length
+/// s it has travelled (`arc_placement`), so the samples of one column (one κ) pass through the same
+/// placements, each at its own arc lengths s(t_r; a). Along that arc the road clearance is
+/// L-Lipschitz in s, L = 1 + |κ| R (R the footprint's bounding radius): a clearance c found at s
+/// proves every arc length within |c|/L of s clear (c > 0) or off the road (c ≤ 0). Which samples
+/// leave the road is decided column by column: each (sample, road time) whose arc length no proof
+/// covers is asked, and proves the stretch about it; a sample's first position off the road decides
+/// it. Values are computed only where asked (`exact`), the times whose arc lengths the clearances
+/// found bound above the smallest so far left out; equal bit for bit to `road_clearances_reference`,
+/// sign and value; elsewhere the set holds ±cap by the sign. Requires an ego that starts on the area.
 class road_field {
  public:
   road_field(const ego_sweep& sweep, const drivable_area& area, double cap);
@@ -84,33 +88,45 @@ class road_field {
   std::size_t bound_checks() const { return bound_checks_; }
 
  private:
-  /// Decides block b at the road times `times` (indices: the sweep's sample times, then T_h) against
-  /// the segments `segments` (indices into `near_`): whole where its centre's clearance is farther
-  /// from 0 than its spread, else by its halves, at the times left.
-  void decide(std::uint32_t b, std::span<const std::uint32_t> times, std::span<const std::uint32_t> segments,
-              std::size_t depth);
+  /// A stretch [lo, hi] of arc length [m] along one column's arc, proven clear of the boundary or
+  /// across it (`off`) at every arc length in it.
+  struct proven {
+    double lo;
+    double hi;
+    bool off;
+  };
+  /// Decides which samples leave the road, column by column.
+  void decide();
+  static void add_proof(std::vector<proven>& proofs, proven p);
+  /// A road clearance found at an arc length of one column's arc (capped at the field's cap).
+  struct evaluation {
+    double arc_length;  ///< [m]
+    double clearance;   ///< [m]
+  };
+  /// Lower bound of the road clearance at arc length s of a column [m], from the evaluations found
+  /// there (in order of arc length) and the column's Lipschitz constant; −∞ without any.
+  static double lower_bound_at(const std::vector<evaluation>& found, double s, double lipschitz);
   placement at(std::size_t r, std::size_t m) const;
-  double spread(std::uint32_t b, std::size_t r) const;
 
   const ego_sweep& sweep_;
   double cap_;
   std::vector<segment_line> near_;
-  /// The footprint's bounding radius about its reference point, rounded up, and its square [m, m²]:
-  /// no point of the footprint is farther from the centre.
+  /// The footprint's bounding radius about its reference point, rounded up [m]: no point of the
+  /// footprint is farther from it.
   double footprint_radius_ = 0.0;
-  double footprint_reach_squared_ = 0.0;
   std::size_t sampled_times_ = 0;  ///< the sweep's sample times before T_h; road time r = sampled_times_ is T_h
   sample_mask collisions_;
   std::vector<double> values_;
   std::vector<std::uint8_t> exact_;
-  /// Per depth of the tree: the times and segments a block's halves are asked at, and its scratch.
-  struct level {
-    std::vector<std::uint32_t> times;
-    std::vector<std::uint32_t> segments;
-    std::vector<double> distances;  ///< [time · segments + segment] of the centre
-    std::vector<double> reach;      ///< [time]: nearest + twice the spread
-  };
-  std::vector<level> levels_;
+  std::vector<std::vector<proven>> proofs_;  ///< `decide`'s: per column, in order
+  /// Per sample its row (acceleration) and column (curvature); per row and road time the arc length
+  /// [m]; per column the Lipschitz constant 1 + |κ| R of the clearance in the arc length, and the
+  /// clearances `decide` found, in order of arc length.
+  std::vector<std::uint32_t> row_of_;
+  std::vector<std::uint32_t> column_of_;
+  std::vector<double> arc_;
+  std::vector<double> lipschitz_;
+  std::vector<std::vector<evaluation>> evaluations_;
   std::vector<segment_line> candidates_;  ///< `exact`'s scratch: the segments near one sample's path
   std::size_t bound_checks_ = 0;
 };
