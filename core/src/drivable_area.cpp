@@ -60,9 +60,10 @@ double rectangle_signed_distance(const placed_footprint& f, const segment_line& 
     const double dy = std::max(std::abs(v.y) - hw, 0.0);
     return dx * dx + dy * dy;
   };
-  // A corner on the far side of a face's line from the whole segment is farther from every point of
-  // it than the face's other end, by at least twice the rectangle's width or length along it: it is
-  // not asked (a short edge beside the car leaves two corners, or one, or none).
+  // When the whole segment lies beyond a face's line (above the top face, say), a corner of the
+  // opposite face is farther from every point of it than the corner across the rectangle from it on
+  // that face, by a margin of the rectangle's size: it is not asked (a short edge beside the car
+  // leaves two corners to ask, or one, or none).
   double best = std::min(box_distance2(p), box_distance2(q));
   const bool above = y_lo >= hw;
   const bool below = y_hi <= -hw;

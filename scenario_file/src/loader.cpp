@@ -528,13 +528,25 @@ class mapper {
 
   mm::sim::follower_config read_follower(const map_view& v) const {
     v.allow({"lookahead_time_s", "min_lookahead_m", "speed_gain_per_s", "comfortable_deceleration_mps2",
-             "curve_lateral_acceleration_mps2"});
+             "curve_lateral_acceleration_mps2", "car_following"});
     mm::sim::follower_config c;
     c.lookahead_time = v.quantity_or("lookahead_time", {seconds}, c.lookahead_time, range::positive);
     c.min_lookahead = v.quantity_or("min_lookahead", {metres}, c.min_lookahead, range::positive);
     c.speed_gain = v.quantity_or("speed_gain", {per_second}, c.speed_gain, range::positive);
     c.comfortable_deceleration = v.quantity_or("comfortable_deceleration", {mps2}, c.comfortable_deceleration, range::positive);
     c.curve_lateral_acceleration = v.quantity("curve_lateral_acceleration", {mps2}, range::positive);
+    if (v.has("car_following")) {
+      const map_view f = v.child("car_following");
+      f.allow(concat({"time_gap_s", "jam_distance_m", "corridor_half_width_m"},
+                     keys_of("max_heading_difference", angle_units)));
+      mm::sim::car_following_config k;
+      k.time_gap = f.quantity_or("time_gap", {seconds}, k.time_gap, range::non_negative);
+      k.jam_distance = f.quantity_or("jam_distance", {metres}, k.jam_distance, range::non_negative);
+      k.corridor_half_width = f.quantity_or("corridor_half_width", {metres}, k.corridor_half_width, range::positive);
+      k.max_heading_difference =
+          f.quantity_or("max_heading_difference", angle_units, k.max_heading_difference, range::non_negative);
+      c.car_following = k;
+    }
     return c;
   }
 

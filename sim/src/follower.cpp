@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace mm::sim {
 
@@ -28,6 +29,18 @@ curve_speed_limit curve_speed_limit_ahead(const path& reference, double arc_leng
     if (speed < limit.speed) limit = {speed, curve_speed, distance};
   }
   return limit;
+}
+
+double car_following_acceleration(double speed, const leader& ahead, const car_following_config& config,
+                                  double max_acceleration, double comfortable_deceleration) {
+  if (!(ahead.gap > 0.0)) return -std::numeric_limits<double>::infinity();
+  const double closing = speed - ahead.speed;
+  const double desired_gap =
+      config.jam_distance +
+      std::max(0.0, speed * config.time_gap +
+                        speed * closing / (2.0 * std::sqrt(max_acceleration * comfortable_deceleration)));
+  const double ratio = desired_gap / ahead.gap;
+  return max_acceleration * (1.0 - ratio * ratio);
 }
 
 follower_command follow_path(const path& reference, double arc_length, const mm::pose& vehicle, double speed,

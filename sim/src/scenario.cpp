@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <numbers>
 #include <set>
 #include <string_view>
 
@@ -103,6 +104,15 @@ void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_s
   c.positive("follower.comfortable_deceleration", v.follower.comfortable_deceleration, "m/s²");
   if (v.follower.curve_lateral_acceleration) {
     c.positive("follower.curve_lateral_acceleration", *v.follower.curve_lateral_acceleration, "m/s²");
+  }
+  if (v.follower.car_following) {
+    c.non_negative("follower.car_following.time_gap", v.follower.car_following->time_gap, "s");
+    c.non_negative("follower.car_following.jam_distance", v.follower.car_following->jam_distance, "m");
+    c.positive("follower.car_following.corridor_half_width", v.follower.car_following->corridor_half_width, "m");
+    c.require(v.follower.car_following->max_heading_difference >= 0.0 &&
+                  v.follower.car_following->max_heading_difference <= std::numbers::pi,
+              "follower.car_following.max_heading_difference", v.follower.car_following->max_heading_difference,
+              "an angle from 0 to π [rad]");
   }
   c.require(v.planning_period >= 1, "planning_period", static_cast<double>(v.planning_period),
             "an integer ≥ 1 [steps]");

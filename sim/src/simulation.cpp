@@ -548,7 +548,51 @@ struct simulation::impl {
     const double desired = spec.desired_speed_profile
                                ? profile_speed(*spec.desired_speed_profile, now() - spec.start_time)
                                : spec.desired_speed;
-    return follow_path(spec.path, s.arc_length, s.pose, s.speed, desired, spec.follower, spec.limits);
+    follower_command command = follow_path(spec.path, s.arc_length, s.pose, s.speed, desired, spec.follower, spec.limits);
+    if (spec.follower.car_following) {
+      if (const std::optional<leader> ahead = leader_of(id_of(v), spec)) {
+        const double most = car_following_acceleration(s.speed, *ahead, *spec.follower.car_following,
+                                                       spec.limits.max_acceleration,
+                                                       spec.follower.comfortable_deceleration);
+        if (most < command.nominal.acceleration) {
+          command.nominal = clamp_to_limits({most, command.nominal.curvature}, s.speed, spec.limits);
+        }
+      }
+    }
+    return command;
+  }
+
+  /// The nearest road user ahead of planning vehicle `self` on its path (its reference point within
+  /// the corridor beside the path, ahead of the vehicle's own projection and within a preview of
+  /// 30 m + 3·(s0 + v·T) + v²/(2b), heading along the path within the largest heading difference):
+  /// the gap from the vehicle's front to its rear along the path,
+  /// and its speed along the path. From the true states: car following is part of the driver
+  /// model, not of the planner's sensing.
+  std::optional<leader> leader_of(agent_id self, const planning_vehicle& spec) const {
+    const agent_state& me = states[self];
+    const car_following_config& c = *spec.follower.car_following;
+    const double v = me.speed;
+    const double preview =
+        30.0 + 3.0 * (c.jam_distance + v * c.time_gap) + v * v / (2.0 * spec.follower.comfortable_deceleration);
+    const double front = 0.5 * spec.shape.length;
+    std::optional<leader> nearest;
+    for (agent_id j = 0; j < states.size(); ++j) {
+      const agent_state& other = states[j];
+      if (j == self || !other.present()) continue;
+      const double reach = preview + front + radii[j];
+      if (squared_norm(other.pose.position - me.pose.position) > reach * reach) continue;
+      const path_projection p = spec.path.project(other.pose.position, me.arc_length + 0.5 * preview, 0.5 * preview);
+      if (p.distance > c.corridor_half_width || !(p.arc_length > me.arc_length)) continue;
+      const vec2 along = unit_vector(p.nearest.heading);
+      if (dot(unit_vector(other.pose.heading), along) < std::cos(c.max_heading_difference)) continue;
+      const mm::placed_footprint f = placed(j);
+      double back = 0.0;  // how far its footprint reaches behind its reference point along the path
+      for (std::size_t k = 0; k < f.vertex_count; ++k) back = std::max(back, dot(other.pose.position - f.vertices[k], along));
+      const leader candidate{p.arc_length - me.arc_length - front - (back + f.radius),
+                             other.speed * dot(unit_vector(other.pose.heading), along)};
+      if (!nearest || candidate.gap < nearest->gap) nearest = candidate;
+    }
+    return nearest;
   }
 
   /// Sensing and decisions of every planning vehicle. A vehicle reads the states of all agents

@@ -73,7 +73,8 @@ agents:
       assignment_search: exhaustive
       max_exhaustive_assignments: 5000
     follower: {lookahead_time_s: 1, min_lookahead_m: 4, speed_gain_per_s: 2, comfortable_deceleration_mps2: 3,
-               curve_lateral_acceleration_mps2: 3}
+               curve_lateral_acceleration_mps2: 3,
+               car_following: {time_gap_s: 1.5, jam_distance_m: 3, corridor_half_width_m: 1.5}}
     avoidance: $on
     planning_period_steps: 2
   - name: R
@@ -157,6 +158,10 @@ TEST(scenario_file, every_field_is_mapped_onto_the_simulator_in_si_units) {
   EXPECT_DOUBLE_EQ(a.follower.speed_gain, 2.0);
   EXPECT_DOUBLE_EQ(a.follower.comfortable_deceleration, 3.0);
   EXPECT_DOUBLE_EQ(a.follower.curve_lateral_acceleration.value(), 3.0);
+  ASSERT_TRUE(a.follower.car_following.has_value());
+  EXPECT_DOUBLE_EQ(a.follower.car_following->time_gap, 1.5);
+  EXPECT_DOUBLE_EQ(a.follower.car_following->jam_distance, 3.0);
+  EXPECT_DOUBLE_EQ(a.follower.car_following->corridor_half_width, 1.5);
   EXPECT_TRUE(a.avoidance);
   EXPECT_EQ(a.planning_period, 2U);
 

@@ -5,7 +5,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
+#include <optional>
 
 #include "mm/sim/simulation.hpp"
 #include "sim/scenarios.hpp"
@@ -132,6 +134,94 @@ TEST(sim_follower, returns_to_its_path_from_a_lateral_offset) {
   // 1/√2 whatever v and L, so an overshoot of exp(−π) ≈ 4.3 % of the initial offset.
   EXPECT_GT(overshoot, -0.05 * 2.0);
   EXPECT_LT(overshoot, -0.03 * 2.0);
+}
+
+}  // namespace
+
+namespace {
+
+TEST(sim_follower, car_following_allows_no_acceleration_at_the_desired_gap_less_within_it_and_more_beyond) {
+  const car_following_config c{1.0, 2.0, 1.75};
+  // s* = s0 + v·T at equal speeds: 2 + 10·1 = 12 m.
+  EXPECT_NEAR(car_following_acceleration(10.0, {12.0, 10.0}, c, 3.0, 2.0), 0.0, 1e-12);
+  EXPECT_NEAR(car_following_acceleration(10.0, {6.0, 10.0}, c, 3.0, 2.0), 3.0 * (1.0 - 4.0), 1e-12);
+  EXPECT_NEAR(car_following_acceleration(10.0, {24.0, 10.0}, c, 3.0, 2.0), 3.0 * (1.0 - 0.25), 1e-12);
+  // Closing at 4 m/s adds v·Δv / (2√(ab)) = 10·4 / (2√6) to the desired gap.
+  const double closing_gap = 12.0 + 40.0 / (2.0 * std::sqrt(6.0));
+  EXPECT_NEAR(car_following_acceleration(10.0, {closing_gap, 6.0}, c, 3.0, 2.0), 0.0, 1e-12);
+  // Opening fast enough never shrinks the desired gap below the jam distance.
+  EXPECT_NEAR(car_following_acceleration(0.0, {2.0, 5.0}, c, 3.0, 2.0), 0.0, 1e-12);
+  EXPECT_EQ(car_following_acceleration(10.0, {0.0, 10.0}, c, 3.0, 2.0), -std::numeric_limits<double>::infinity());
+  EXPECT_EQ(car_following_acceleration(10.0, {-0.5, 10.0}, c, 3.0, 2.0), -std::numeric_limits<double>::infinity());
+}
+
+/// Smallest bumper-to-bumper gap of A behind B (both 4.5 m long, B ahead on the same line) over a run
+/// of `seconds`, and the gap at its end [m].
+struct following_gaps {
+  double smallest = std::numeric_limits<double>::infinity();
+  double last = 0.0;
+};
+
+following_gaps follow_slower_vehicle(const std::optional<car_following_config>& following, double seconds) {
+  scenario s;
+  s.duration = seconds;
+  planning_vehicle a = cruising("A", straight_path({0.0, 0.0}, 0.0, 600.0), 60.0 / 3.6);
+  a.planner.safety_margin = 0.3;
+  a.follower.car_following = following;
+  s.planning_vehicles.push_back(a);
+  s.scripted_vehicles.push_back(
+      mm::sim::testing::scripted("B", straight_path({30.0, 0.0}, 0.0, 600.0), 30.0 / 3.6));
+  simulation sim(s);
+  following_gaps gaps;
+  run(sim, [&](const simulation& now) {
+    const double gap = now.state(1).pose.position.x - now.state(0).pose.position.x - 4.5;
+    gaps.smallest = std::min(gaps.smallest, gap);
+    gaps.last = gap;
+  });
+  EXPECT_TRUE(sim.crashes().empty());
+  return gaps;
+}
+
+TEST(sim_follower, with_car_following_a_faster_vehicle_settles_a_time_gap_behind_a_slower_one) {
+  const double seconds = mm::sim::testing::sanitize_scale() ? 12.0 : 20.0;
+  // B at 30 km/h: s* = 2 m + 8.33 m/s · 1 s = 10.33 m.
+  const double desired = 2.0 + 30.0 / 3.6 * 1.0;
+  const following_gaps kept = follow_slower_vehicle(car_following_config{1.0, 2.0, 1.75}, seconds);
+  EXPECT_NEAR(kept.last, desired, 0.05);
+  EXPECT_GT(kept.smallest, desired - 0.05);
+  // Without it u_nom holds 60 km/h: the planner keeps A off B (no crash), and A does not stay
+  // behind it but swerves round it and passes.
+  const following_gaps passed = follow_slower_vehicle(std::nullopt, seconds);
+  EXPECT_LT(passed.last, -10.0);
+  std::printf("bumper gap behind B at 30 km/h: %.3f m with car following (s* = %.3f m); without, A ends %.1f m "
+              "ahead of B's rear\n",
+              kept.last, desired, -passed.last);
+}
+
+TEST(sim_follower, car_following_follows_the_road_user_ahead_in_the_corridor_not_beside_behind_or_across) {
+  // A at its desired 15 m/s; B in the next lane (3.5 m beside the path) 12 m ahead, C 20 m behind,
+  // D crossing A's path 15 m ahead: none is followed, u_nom keeps the speed. E, 25 m ahead in A's
+  // lane at 5 m/s, is: the desired gap 2 + 15 + 15·10/(2√6) = 47.6 m exceeds E's 20.5 m.
+  const auto nominal_acceleration = [](bool with_e) {
+    scenario s;
+    s.duration = 1.0;
+    planning_vehicle a = cruising("A", straight_path({0.0, 0.0}, 0.0, 300.0), 15.0);
+    a.follower.car_following = car_following_config{};
+    s.planning_vehicles.push_back(a);
+    s.scripted_vehicles.push_back(mm::sim::testing::scripted("B", straight_path({12.0, 3.5}, 0.0, 300.0), 5.0));
+    s.scripted_vehicles.push_back(mm::sim::testing::scripted("C", straight_path({-20.0, 0.0}, 0.0, 300.0), 5.0));
+    s.scripted_vehicles.push_back(
+        mm::sim::testing::scripted("D", straight_path({15.0, 30.0}, -pi / 2.0, 300.0), 5.0));
+    if (with_e) {
+      s.scripted_vehicles.push_back(mm::sim::testing::scripted("E", straight_path({25.0, 0.0}, 0.0, 300.0), 5.0));
+    }
+    const simulation sim(s);
+    return sim.planning_input(0).value().nominal.acceleration;
+  };
+  EXPECT_EQ(nominal_acceleration(false), 0.0);
+  const double gap = 25.0 - 4.5;
+  const double desired = 2.0 + 15.0 + 15.0 * 10.0 / (2.0 * std::sqrt(3.0 * 2.0));
+  EXPECT_NEAR(nominal_acceleration(true), std::max(-7.0, 3.0 * (1.0 - (desired / gap) * (desired / gap))), 1e-9);
 }
 
 }  // namespace

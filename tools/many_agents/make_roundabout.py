@@ -4,8 +4,18 @@
 Each arm holds a queue of vehicles on its entry lane, 14 m apart, all moving at the start; vehicle
 k of an arm leaves by the arm 1, 2 or 3 positions counter-clockwise (k mod 3), so every entry
 has circulating traffic to merge with. Run: python3 tools/many_agents/make_roundabout.py
+
+With --car-following it writes examples/scenarios/s6-busy-roundabout-following.yaml instead: the
+same vehicles, each keeping a time gap of 1 s and 2 m at a standstill to the road user ahead on its
+path (`follower.car_following`, docs/simulator.md §5), where S6's close up to the planner's margin.
 """
+import argparse
 import pathlib
+
+parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+parser.add_argument("--car-following", action="store_true",
+                    help="write the variant whose drivers keep their distance (examples/scenarios/)")
+following = parser.parse_args().car_following
 
 ARMS = ["east", "north", "west", "south"]
 COUNT = 50
@@ -23,11 +33,19 @@ add(f"# lane, {SPACING_M:g} m apart, the first 10 m before its connecting arc, a
 add("# vehicle k of an arm leaves by the arm 1, 2 or 3 positions counter-clockwise (k mod 3).")
 add("# Nobody yields by rule: merging and following are left to the planner, with a 0.3 m margin.")
 add("#")
+if following:
+    add("# Here every driver also keeps its distance to the road user ahead on its path: a time gap of")
+    add("# 1 s and 2 m at a standstill (follower.car_following), where S6's close up to the margin.")
+    add("#")
 add("# What it is for: the many-agent cost of the planner (docs/performance.md): the real-time factor")
 add("# at 100 Hz, with `jobs` threads planning the vehicles of a step in parallel.")
 add("format: maneuvermap-scenario/1")
-add("name: s6-busy-roundabout")
-add('description: "S6: 50 planning vehicles through a four-arm roundabout, each avoiding the others"')
+if following:
+    add("name: s6-busy-roundabout-following")
+    add('description: "S6 with drivers that keep a 1 s time gap to the road user ahead on their path"')
+else:
+    add("name: s6-busy-roundabout")
+    add('description: "S6: 50 planning vehicles through a four-arm roundabout, each avoiding the others"')
 add("")
 add("parameters:")
 add("  speed_kmh: 30     # initial and desired speed of every vehicle")
@@ -49,6 +67,8 @@ add("defaults:")
 add("  planning_vehicle:")
 add("    desired_speed_kmh: $speed_kmh")
 add("    planner: {policy: adj, safety_margin_m: $margin_m}")
+if following:
+    add("    follower: {car_following: {time_gap_s: 1.0, jam_distance_m: 2.0}}")
 add("")
 add("agents:")
 per_arm = [COUNT // len(ARMS) + (1 if i < COUNT % len(ARMS) else 0) for i in range(len(ARMS))]
@@ -59,6 +79,8 @@ for a, arm in enumerate(ARMS):
         add("    kind: planning_vehicle")
         add(f"    path: {{roundabout: {{entry: {arm}, exit: {exit_arm}}}}}")
         add(f"    start_arc_length_m: {FIRST_M - SPACING_M * k:g}")
-out = pathlib.Path(__file__).resolve().parents[2] / "scenarios" / "s6-busy-roundabout.yaml"
+root = pathlib.Path(__file__).resolve().parents[2]
+out = (root / "examples" / "scenarios" / "s6-busy-roundabout-following.yaml" if following
+       else root / "scenarios" / "s6-busy-roundabout.yaml")
 out.write_text("\n".join(lines) + "\n")
 print(f"wrote {out}")

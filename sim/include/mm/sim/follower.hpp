@@ -8,6 +8,36 @@
 
 namespace mm::sim {
 
+/// Keeping a distance to the road user ahead on the path: the interaction term of the Intelligent
+/// Driver Model (Treiber, Hennecke and Helbing 2000). An addition to spec §8, whose u_nom keeps only
+/// to the path and the desired speed, so that a planning vehicle closes up to the planner's safety
+/// margin behind a slower one (docs/simulator.md §5).
+struct car_following_config {
+  double time_gap = 1.0;      ///< T [s] ≥ 0: the gap kept grows by v·T at speed v
+  double jam_distance = 2.0;  ///< s0 [m] ≥ 0: the gap kept at a standstill, bumper to bumper
+  /// [m] > 0: a road user whose reference point is this close beside the path, ahead on it, is
+  /// followed (half a lane).
+  double corridor_half_width = 1.75;
+  /// [rad] in [0, π]: and whose heading differs from the path's there by at most this. Crossing and
+  /// oncoming traffic is the planner's to avoid, not the driver's to follow (a vehicle that follows
+  /// whatever enters its corridor stops for every merging one, and a busy roundabout jams).
+  double max_heading_difference = 0.785398163397448;  // 45°
+};
+
+/// The road user a follower keeps its distance to.
+struct leader {
+  double gap = 0.0;    ///< s [m]: from the follower's front to the leader's rear, along the path
+  double speed = 0.0;  ///< the leader's speed along the path [m/s] (negative when it comes toward)
+};
+
+/// The largest acceleration car following allows [m/s²]: a·(1 − (s*/s)²) with the desired gap
+/// s* = s0 + max(0, v·T + v·Δv / (2√(a·b))), Δv = v − v_leader, a the vehicle's largest
+/// acceleration and b its comfortable deceleration; −∞ when the gap s ≤ 0. It is 0 at s = s*,
+/// positive beyond and negative within, so a follower that takes min(its own, this) settles at s*
+/// behind a leader of constant speed.
+double car_following_acceleration(double speed, const leader& ahead, const car_following_config& config,
+                                  double max_acceleration, double comfortable_deceleration);
+
 /// Parameters of the path follower that produces the nominal maneuver u_nom (spec §8).
 struct follower_config {
   double lookahead_time = 0.8;            ///< k_L [s]: lookahead L_d = max(L_min, k_L·v); > 0
@@ -17,6 +47,9 @@ struct follower_config {
   /// a_lat [m/s²] of the curve speed limit v²|κ| ≤ a_lat; none: the vehicle's
   /// `ego_limits::max_lateral_acceleration` (spec §8).
   std::optional<double> curve_lateral_acceleration;
+  /// Keeping a distance to the road user ahead (`car_following_acceleration`); none: off, as in
+  /// spec §8.
+  std::optional<car_following_config> car_following;
 };
 
 /// Lookahead distance L_d = max(L_min, k_L·v) [m].
