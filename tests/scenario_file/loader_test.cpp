@@ -472,3 +472,30 @@ TEST(scenario_file, a_built_in_file_on_disk_is_the_embedded_one) {
 }
 
 }  // namespace
+
+namespace mm::scenario_file {
+namespace {
+
+TEST(scenario_file, the_s6_variant_with_car_following_is_s6_with_every_driver_keeping_its_distance) {
+  const char* root = std::getenv("MM_SOURCE_DIR");
+  ASSERT_NE(root, nullptr);
+  const loaded_scenario following = load(std::string(root) + "/examples/scenarios/s6-busy-roundabout-following.yaml");
+  const loaded_scenario s6 = load("s6-busy-roundabout");
+  const auto& with = following.scenario.planning_vehicles;
+  const auto& without = s6.scenario.planning_vehicles;
+  ASSERT_EQ(with.size(), 50U);
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t i = 0; i < with.size(); ++i) {
+    EXPECT_EQ(with[i].name, without[i].name);
+    EXPECT_EQ(with[i].start_arc_length, without[i].start_arc_length) << with[i].name;
+    EXPECT_EQ(with[i].path.length(), without[i].path.length()) << with[i].name;
+    EXPECT_EQ(with[i].desired_speed, without[i].desired_speed) << with[i].name;
+    EXPECT_FALSE(without[i].follower.car_following.has_value()) << with[i].name;
+    ASSERT_TRUE(with[i].follower.car_following.has_value()) << with[i].name;
+    EXPECT_EQ(with[i].follower.car_following->time_gap, 1.0);
+    EXPECT_EQ(with[i].follower.car_following->jam_distance, 2.0);
+  }
+}
+
+}  // namespace
+}  // namespace mm::scenario_file
