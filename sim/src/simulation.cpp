@@ -562,12 +562,12 @@ struct simulation::impl {
     return command;
   }
 
-  /// The nearest road user ahead of planning vehicle `self` on its path (its reference point within
+  /// The nearest road user ahead of planning vehicle `self` on its path — its reference point within
   /// the corridor beside the path, ahead of the vehicle's own projection and within a preview of
-  /// 30 m + 3·(s0 + v·T) + v²/(2b), heading along the path within the largest heading difference):
-  /// the gap from the vehicle's front to its rear along the path,
-  /// and its speed along the path. From the true states: car following is part of the driver
-  /// model, not of the planner's sensing.
+  /// 30 m + 3·(s0 + v·T) + v²/(2b), heading along the path within the largest heading difference;
+  /// static obstacles are the planner's — with the gap from the vehicle's front to its rear along
+  /// the path, and its speed along the path. From the true states: car following is part of the
+  /// driver model, not of the planner's sensing.
   std::optional<leader> leader_of(agent_id self, const planning_vehicle& spec) const {
     const agent_state& me = states[self];
     const car_following_config& c = *spec.follower.car_following;
@@ -578,7 +578,7 @@ struct simulation::impl {
     std::optional<leader> nearest;
     for (agent_id j = 0; j < states.size(); ++j) {
       const agent_state& other = states[j];
-      if (j == self || !other.present()) continue;
+      if (j == self || !other.present() || infos[j].kind == agent_kind::static_obstacle) continue;
       const double reach = preview + front + radii[j];
       if (squared_norm(other.pose.position - me.pose.position) > reach * reach) continue;
       const path_projection p = spec.path.project(other.pose.position, me.arc_length + 0.5 * preview, 0.5 * preview);

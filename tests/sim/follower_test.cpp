@@ -198,9 +198,10 @@ TEST(sim_follower, with_car_following_a_faster_vehicle_settles_a_time_gap_behind
               kept.last, desired, -passed.last);
 }
 
-TEST(sim_follower, car_following_follows_the_road_user_ahead_in_the_corridor_not_beside_behind_or_across) {
+TEST(sim_follower, car_following_follows_the_road_user_ahead_in_the_corridor_not_beside_behind_across_or_static) {
   // A at its desired 15 m/s; B in the next lane (3.5 m beside the path) 12 m ahead, C 20 m behind,
-  // D crossing A's path 15 m ahead: none is followed, u_nom keeps the speed. E, 25 m ahead in A's
+  // D crossing A's path 15 m ahead, the static obstacle F on it 40 m ahead: none is followed, u_nom
+  // keeps the speed. E, 25 m ahead in A's
   // lane at 5 m/s, is: the desired gap 2 + 15 + 15·10/(2√6) = 47.6 m exceeds E's 20.5 m.
   const auto nominal_acceleration = [](bool with_e) {
     scenario s;
@@ -212,6 +213,7 @@ TEST(sim_follower, car_following_follows_the_road_user_ahead_in_the_corridor_not
     s.scripted_vehicles.push_back(mm::sim::testing::scripted("C", straight_path({-20.0, 0.0}, 0.0, 300.0), 5.0));
     s.scripted_vehicles.push_back(
         mm::sim::testing::scripted("D", straight_path({15.0, 30.0}, -pi / 2.0, 300.0), 5.0));
+    s.static_obstacles.push_back({"F", {{40.0, -0.9}, {44.0, -0.9}, {44.0, 0.9}, {40.0, 0.9}}});
     if (with_e) {
       s.scripted_vehicles.push_back(mm::sim::testing::scripted("E", straight_path({25.0, 0.0}, 0.0, 300.0), 5.0));
     }
