@@ -20,7 +20,17 @@ placement placement_of(const ego_state& ego, const maneuver& u, double t, const 
 
 double clamped(double value, double cap) { return std::max(-cap, std::min(value, cap)); }
 
-double segment_distance(vec2 p, const segment& s) { return std::sqrt(squared_distance_to_segment(p, s.a, s.b)); }
+/// The footprint's bounding radius about its reference point, rounded up [m].
+double rounded_up_radius(const footprint& shape) { return bounding_radius(shape) * (1.0 + 1e-12) + rounding_slack; }
+
+/// The boundary segments within `reach` [m] of `point`.
+std::vector<segment_line> segments_near(const drivable_area& area, vec2 point, double reach) {
+  std::vector<segment_line> near;
+  for (const segment_line& s : area.boundary_lines()) {
+    if (std::sqrt(squared_distance_to_segment(point, s.a, s.b)) <= reach) near.push_back(s);
+  }
+  return near;
+}
 
 }  // namespace
 
@@ -68,12 +78,10 @@ bool stays_on_drivable_area(const drivable_area& area, const ego_state& ego, con
   // than `apart` from each. The segments nearer give the clearance exactly where it is below `apart`;
   // elsewhere every segment is asked.
   constexpr double apart = 5.0;
-  const double reach = travelled_distance(ego.speed, u.acceleration, window.horizon, ego.limits.speed_cap) +
-                       bounding_radius(ego.shape) * (1.0 + 1e-12) + apart + rounding_slack;
-  std::vector<segment_line> near;
-  for (const segment_line& s : area.boundary_lines()) {
-    if (squared_distance_to_segment(ego.pose.position, s.a, s.b) <= reach * reach) near.push_back(s);
-  }
+  const std::vector<segment_line> near = segments_near(
+      area, ego.pose.position,
+      travelled_distance(ego.speed, u.acceleration, window.horizon, ego.limits.speed_cap) +
+          rounded_up_radius(ego.shape) + apart);
   const auto clearance = [&](double t) {
     const placed_footprint f = placed(ego, placement_of(ego, u, t, window));
     const double value = boundary_clearance(near, f, std::numeric_limits<double>::infinity());
@@ -107,14 +115,11 @@ road_field::road_field(const ego_sweep& sweep, const drivable_area& area, double
   const ego_state& ego = sweep.ego();
   // Segments farther from the start than the reach by T_h, the footprint's radius and the cap are
   // farther than the cap from every placement: they cannot lower a clamped clearance.
-  const double near = sweep.straight_reach().base + bounding_radius(ego.shape) + cap + rounding_slack;
-  for (const segment_line& s : area.boundary_lines()) {
-    if (segment_distance(ego.pose.position, s.segment_of()) <= near) near_.push_back(s);
-  }
+  near_ = segments_near(area, ego.pose.position, sweep.straight_reach().base + rounded_up_radius(ego.shape) + cap);
   const std::vector<double>& times = sweep.times();
   while (sampled_times_ < times.size() && times[sampled_times_] < sweep.window().horizon) ++sampled_times_;
   if (near_.empty()) return;  // nothing within reach: every sample stays on the road
-  footprint_radius_ = bounding_radius(ego.shape) * (1.0 + 1e-12) + rounding_slack;
+  footprint_radius_ = rounded_up_radius(ego.shape);
 
   decide();
   collisions_.for_each([&](std::size_t m) { values_[m] = -cap_; });
@@ -192,9 +197,7 @@ void road_field::decide() {
       ++bound_checks_;
       const double c = boundary_clearance(near_, placed(ego, at(r, m)), cap_);
       std::vector<evaluation>& found = evaluations_[column_of_[m]];
-      found.insert(std::upper_bound(found.begin(), found.end(), s,
-                                    [](double v, const evaluation& e) { return v < e.arc_length; }),
-                   {s, c});
+      found.insert(std::upper_bound(found.begin(), found.end(), s, before), {s, c});
       const bool off = !(c > 0.0);
       const double width = (std::abs(c) - rounding_slack * (1.0 + std::abs(c))) / lipschitz * (1.0 - 1e-12);
       if (width > 0.0) add_proof(proofs, {s - width, s + width, off});
@@ -209,8 +212,7 @@ void road_field::decide() {
 double road_field::lower_bound_at(const std::vector<evaluation>& found, double s, double lipschitz) {
   // The clearance is L-Lipschitz in the arc length (see `decide`): each evaluation bounds it below;
   // the nearest on either side bound it most, up to where they are capped.
-  const auto next = std::upper_bound(found.begin(), found.end(), s,
-                                     [](double v, const evaluation& e) { return v < e.arc_length; });
+  const auto next = std::upper_bound(found.begin(), found.end(), s, before);
   double bound = -std::numeric_limits<double>::infinity();
   if (next != found.end()) bound = next->clearance - lipschitz * (next->arc_length - s);
   if (next != found.begin()) {

@@ -584,12 +584,13 @@ struct simulation::impl {
       const path_projection p = spec.path.project(other.pose.position, me.arc_length + 0.5 * preview, 0.5 * preview);
       if (p.distance > c.corridor_half_width || !(p.arc_length > me.arc_length)) continue;
       const vec2 along = unit_vector(p.nearest.heading);
-      if (dot(unit_vector(other.pose.heading), along) < std::cos(c.max_heading_difference)) continue;
+      const double heading_along = dot(unit_vector(other.pose.heading), along);  // cos of the heading difference
+      if (heading_along < std::cos(c.max_heading_difference)) continue;
       const mm::placed_footprint f = placed(j);
       double back = 0.0;  // how far its footprint reaches behind its reference point along the path
       for (std::size_t k = 0; k < f.vertex_count; ++k) back = std::max(back, dot(other.pose.position - f.vertices[k], along));
       const leader candidate{p.arc_length - me.arc_length - front - (back + f.radius),
-                             other.speed * dot(unit_vector(other.pose.heading), along)};
+                             other.speed * heading_along};
       if (!nearest || candidate.gap < nearest->gap) nearest = candidate;
     }
     return nearest;

@@ -103,6 +103,8 @@ class road_field {
     double arc_length;  ///< [m]
     double clearance;   ///< [m]
   };
+  /// Orders evaluations by arc length: `std::upper_bound` of arc length s.
+  static bool before(double s, const evaluation& e) { return s < e.arc_length; }
   /// Lower bound of the road clearance at arc length s of a column [m], from the evaluations found
   /// there (in order of arc length) and the column's Lipschitz constant; −∞ without any.
   static double lower_bound_at(const std::vector<evaluation>& found, double s, double lipschitz);
