@@ -100,7 +100,7 @@ const std::vector<std::string> planning_keys = concat(
            {"start_lateral_offset_m", "footprint", "limits", "planner", "follower", "avoidance", "planning_period_steps"}));
 const std::vector<std::string> motion_keys = concat(
     common_agent_keys, concat(keys_of("speed", speed_units), {"speed_profile", "stop"}));
-const std::vector<std::string> scripted_keys = concat(motion_keys, {"footprint"});
+const std::vector<std::string> scripted_keys = concat(motion_keys, {"footprint", "car_following"});
 const std::vector<std::string> pedestrian_keys = concat(motion_keys, {"radius_m"});
 const std::vector<std::string> static_keys{"name", "kind", "vertices_m"};
 
@@ -399,6 +399,7 @@ class mapper {
           out.name = name;
           out.motion = read_motion(v);
           out.shape = read_footprint(v);
+          if (v.has("car_following")) out.car_following = read_scripted_car_following(v.child("car_following"));
           entry.index = s.scripted_vehicles.size();
           s.scripted_vehicles.push_back(std::move(out));
           break;
@@ -537,17 +538,39 @@ class mapper {
     c.curve_lateral_acceleration = v.quantity("curve_lateral_acceleration", {mps2}, range::positive);
     if (v.has("car_following")) {
       const map_view f = v.child("car_following");
-      f.allow(concat({"time_gap_s", "jam_distance_m", "corridor_half_width_m"},
-                     keys_of("max_heading_difference", angle_units)));
-      mm::sim::car_following_config k;
-      k.time_gap = f.quantity_or("time_gap", {seconds}, k.time_gap, range::non_negative);
-      k.jam_distance = f.quantity_or("jam_distance", {metres}, k.jam_distance, range::non_negative);
-      k.corridor_half_width = f.quantity_or("corridor_half_width", {metres}, k.corridor_half_width, range::positive);
-      k.max_heading_difference =
-          f.quantity_or("max_heading_difference", angle_units, k.max_heading_difference, range::non_negative);
-      c.car_following = k;
+      f.allow(car_following_keys());
+      c.car_following = read_car_following(f);
     }
     return c;
+  }
+
+  static std::vector<std::string> car_following_keys() {
+    return concat({"time_gap_s", "jam_distance_m", "corridor_half_width_m"}, keys_of("max_heading_difference", angle_units));
+  }
+
+  mm::sim::car_following_config read_car_following(const map_view& f) const {
+    mm::sim::car_following_config k;
+    k.time_gap = f.quantity_or("time_gap", {seconds}, k.time_gap, range::non_negative);
+    k.jam_distance = f.quantity_or("jam_distance", {metres}, k.jam_distance, range::non_negative);
+    k.corridor_half_width = f.quantity_or("corridor_half_width", {metres}, k.corridor_half_width, range::positive);
+    k.max_heading_difference =
+        f.quantity_or("max_heading_difference", angle_units, k.max_heading_difference, range::non_negative);
+    return k;
+  }
+
+  /// A scripted vehicle's car following: the planning vehicles' fields and the accelerations that
+  /// a planning vehicle takes from its limits and its follower.
+  mm::sim::scripted_car_following read_scripted_car_following(const map_view& f) const {
+    f.allow(concat(car_following_keys(), {"max_acceleration_mps2", "comfortable_deceleration_mps2",
+                                          "max_deceleration_mps2", "speed_gain_per_s"}));
+    mm::sim::scripted_car_following k;
+    k.following = read_car_following(f);
+    k.max_acceleration = f.quantity_or("max_acceleration", {mps2}, k.max_acceleration, range::positive);
+    k.comfortable_deceleration =
+        f.quantity_or("comfortable_deceleration", {mps2}, k.comfortable_deceleration, range::positive);
+    k.max_deceleration = f.quantity_or("max_deceleration", {mps2}, k.max_deceleration, range::positive);
+    k.speed_gain = f.quantity_or("speed_gain", {per_second}, k.speed_gain, range::positive);
+    return k;
   }
 
   mm::sim::scripted_motion read_motion(const map_view& v) const {

@@ -43,6 +43,14 @@ double car_following_acceleration(double speed, const leader& ahead, const car_f
   return max_acceleration * (1.0 - ratio * ratio);
 }
 
+double lagging_acceleration(double arc_length, double speed, const scripted_sample& script, double cap,
+                            const scripted_car_following& config) {
+  const double k = config.speed_gain;
+  const double closing =
+      script.acceleration + k * (script.speed - speed) + k * k * (script.arc_length - arc_length);
+  return std::clamp(std::min(closing, cap), -config.max_deceleration, config.max_acceleration);
+}
+
 follower_command follow_path(const path& reference, double arc_length, const mm::pose& vehicle, double speed,
                              double desired_speed, const follower_config& config, const ego_limits& limits) {
   follower_command command;

@@ -80,6 +80,22 @@ class checker {
     }
   }
 
+  void car_following(const std::string& prefix, const car_following_config& k) {
+    non_negative(prefix + "time_gap", k.time_gap, "s");
+    non_negative(prefix + "jam_distance", k.jam_distance, "m");
+    positive(prefix + "corridor_half_width", k.corridor_half_width, "m");
+    require(k.max_heading_difference >= 0.0 && k.max_heading_difference <= std::numbers::pi,
+            prefix + "max_heading_difference", k.max_heading_difference, "an angle from 0 to π [rad]");
+  }
+
+  void scripted_following(const std::string& prefix, const scripted_car_following& k) {
+    car_following(prefix, k.following);
+    positive(prefix + "max_acceleration", k.max_acceleration, "m/s²");
+    positive(prefix + "comfortable_deceleration", k.comfortable_deceleration, "m/s²");
+    positive(prefix + "max_deceleration", k.max_deceleration, "m/s²");
+    positive(prefix + "speed_gain", k.speed_gain, "1/s");
+  }
+
   void rectangle(const std::string& prefix, const mm::rectangle& r) {
     positive(prefix + "shape.length", r.length, "m");
     positive(prefix + "shape.width", r.width, "m");
@@ -105,15 +121,7 @@ void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_s
   if (v.follower.curve_lateral_acceleration) {
     c.positive("follower.curve_lateral_acceleration", *v.follower.curve_lateral_acceleration, "m/s²");
   }
-  if (v.follower.car_following) {
-    c.non_negative("follower.car_following.time_gap", v.follower.car_following->time_gap, "s");
-    c.non_negative("follower.car_following.jam_distance", v.follower.car_following->jam_distance, "m");
-    c.positive("follower.car_following.corridor_half_width", v.follower.car_following->corridor_half_width, "m");
-    c.require(v.follower.car_following->max_heading_difference >= 0.0 &&
-                  v.follower.car_following->max_heading_difference <= std::numbers::pi,
-              "follower.car_following.max_heading_difference", v.follower.car_following->max_heading_difference,
-              "an angle from 0 to π [rad]");
-  }
+  if (v.follower.car_following) c.car_following("follower.car_following.", *v.follower.car_following);
   c.require(v.planning_period >= 1, "planning_period", static_cast<double>(v.planning_period),
             "an integer ≥ 1 [steps]");
   c.require(v.planner.history_window >= time_step, "planner.history_window", v.planner.history_window,
@@ -181,6 +189,7 @@ std::optional<std::string> validation_error(const scenario& s) {
     name("scripted_vehicles", i, s.scripted_vehicles[i].name);
     c.motion("motion.", s.scripted_vehicles[i].motion);
     c.rectangle("", s.scripted_vehicles[i].shape);
+    if (s.scripted_vehicles[i].car_following) c.scripted_following("car_following.", *s.scripted_vehicles[i].car_following);
   }
   for (std::size_t i = 0; i < s.pedestrians.size() && !c.error; ++i) {
     name("pedestrians", i, s.pedestrians[i].name);

@@ -180,6 +180,15 @@ struct simulation::impl {
   std::vector<agent_state> states;
   std::vector<double> radii;                       ///< bounding radius of each footprint [m]
   std::vector<const scripted_motion*> motions;     ///< per id; null for planning vehicles and statics
+  /// A scripted vehicle with car following: whether it lags behind its script, and the
+  /// acceleration it takes over the step (decided in `react` from the states at the step's start).
+  struct lag {
+    const scripted_car_following* config = nullptr;  ///< null: it keeps to its script
+    double length = 0.0;                             ///< of its footprint [m]
+    bool lagging = false;
+    double acceleration = 0.0;  ///< [m/s²]
+  };
+  std::vector<lag> lags;  ///< per id
   std::vector<vehicle> vehicles;                   ///< ids 0..P−1
   std::unique_ptr<detail::worker_pool> pool;       ///< the helper threads of `decide` (jobs > 1), kept for the run
   std::vector<planner_set> planners;               ///< [thread of `decide`]
@@ -212,6 +221,7 @@ struct simulation::impl {
     for (const planning_vehicle& v : sc.planning_vehicles) add(v.name, agent_kind::planning_vehicle, v.shape, nullptr);
     for (const scripted_vehicle& v : sc.scripted_vehicles) {
       add(v.name, agent_kind::scripted_vehicle, v.shape, &v.motion);
+      if (v.car_following) lags.back() = {&*v.car_following, v.shape.length};
     }
     for (const pedestrian& p : sc.pedestrians) add(p.name, agent_kind::pedestrian, mm::disc{p.radius}, &p.motion);
     for (const static_obstacle& o : sc.static_obstacles) {
@@ -255,6 +265,7 @@ struct simulation::impl {
     infos.push_back({name, kind, std::move(shape)});
     states.emplace_back();
     motions.push_back(motion);
+    lags.emplace_back();
   }
 
   double now() const { return static_cast<double>(step) * sc.time_step; }
@@ -279,7 +290,7 @@ struct simulation::impl {
   void advance_agents(double dt, bool initial) {
     for (vehicle& v : vehicles) advance_vehicle(v, dt, initial);
     for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
-      if (motions[id] != nullptr) advance_scripted(id);
+      if (motions[id] != nullptr) advance_scripted(id, dt);
     }
   }
 
@@ -333,11 +344,34 @@ struct simulation::impl {
     std::fill(v.seen.begin(), v.seen.end(), 0);
   }
 
-  void advance_scripted(agent_id id) {
+  void advance_scripted(agent_id id, double dt) {
     agent_state& s = states[id];
     if (s.status == agent_status::crashed || s.status == agent_status::finished) return;
     const scripted_motion& m = *motions[id];
     const scripted_sample sample = scripted_state(m, now());
+    if (lags[id].lagging) {
+      // s and v under the step's constant acceleration, stopping at rest.
+      const double a = lags[id].acceleration;
+      double speed = s.speed + a * dt;
+      double travelled = 0.5 * (s.speed + speed) * dt;
+      if (speed < 0.0) {
+        travelled = s.speed * s.speed / (-2.0 * a);
+        speed = 0.0;
+      }
+      const double arc_length = s.arc_length + travelled;
+      if (arc_length < sample.arc_length && arc_length < m.path.length()) {
+        const path_point at = m.path.at(arc_length);
+        s.status = agent_status::active;
+        s.pose = {at.position, at.heading};
+        s.acceleration = (speed - s.speed) / dt;
+        s.speed = speed;
+        s.curvature = at.curvature;
+        s.arc_length = arc_length;
+        s.lateral_offset = 0.0;
+        return;
+      }
+      lags[id].lagging = false;  // caught up with its script (or at the path's end): on it again
+    }
     const path_point where = m.path.at(sample.arc_length);
     s.status = status_of(sample.phase, m.before_start);
     s.pose = {where.position, where.heading};
@@ -346,6 +380,29 @@ struct simulation::impl {
     s.curvature = s.status == agent_status::active ? where.curvature : 0.0;
     s.arc_length = sample.arc_length;
     s.lateral_offset = 0.0;
+  }
+
+  /// Car following of the scripted vehicles that have it, from the states at the step's start (so
+  /// that the order in which agents move does not matter): a vehicle on its script starts to lag
+  /// when car following allows less than the script's acceleration; a lagging one takes
+  /// `lagging_acceleration`.
+  void react() {
+    for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
+      lag& l = lags[id];
+      if (l.config == nullptr || states[id].status != agent_status::active) continue;
+      const agent_state& s = states[id];
+      const scripted_motion& m = *motions[id];
+      const scripted_car_following& k = *l.config;
+      double cap = inf;
+      if (const std::optional<leader> ahead = leader_of(id, m.path, l.length, k.following, k.comfortable_deceleration)) {
+        cap = car_following_acceleration(s.speed, *ahead, k.following, k.max_acceleration, k.comfortable_deceleration);
+      }
+      if (!l.lagging) {
+        if (!(cap < s.acceleration)) continue;
+        l.lagging = true;
+      }
+      l.acceleration = lagging_acceleration(s.arc_length, s.speed, scripted_state(m, now()), cap, k);
+    }
   }
 
   // --- 2. crashes ------------------------------------------------------------------------------
@@ -550,7 +607,9 @@ struct simulation::impl {
                                : spec.desired_speed;
     follower_command command = follow_path(spec.path, s.arc_length, s.pose, s.speed, desired, spec.follower, spec.limits);
     if (spec.follower.car_following) {
-      if (const std::optional<leader> ahead = leader_of(id_of(v), spec)) {
+      if (const std::optional<leader> ahead = leader_of(id_of(v), spec.path, spec.shape.length,
+                                                        *spec.follower.car_following,
+                                                        spec.follower.comfortable_deceleration)) {
         const double most = car_following_acceleration(s.speed, *ahead, *spec.follower.car_following,
                                                        spec.limits.max_acceleration,
                                                        spec.follower.comfortable_deceleration);
@@ -562,26 +621,25 @@ struct simulation::impl {
     return command;
   }
 
-  /// The nearest road user ahead of planning vehicle `self` on its path — its reference point within
-  /// the corridor beside the path, ahead of the vehicle's own projection and within a preview of
-  /// 30 m + 3·(s0 + v·T) + v²/(2b), heading along the path within the largest heading difference;
-  /// static obstacles are the planner's — with the gap from the vehicle's front to its rear along
-  /// the path, and its speed along the path. From the true states: car following is part of the
-  /// driver model, not of the planner's sensing.
-  std::optional<leader> leader_of(agent_id self, const planning_vehicle& spec) const {
+  /// The nearest road user ahead of vehicle `self` (of length `length` [m]) on its path — its
+  /// reference point within the corridor beside the path, ahead of the vehicle's own projection and
+  /// within a preview of 30 m + 3·(s0 + v·T) + v²/(2b), heading along the path within the largest
+  /// heading difference; static obstacles are the planner's — with the gap from the vehicle's front
+  /// to its rear along the path, and its speed along the path. From the true states: car following
+  /// is part of the driver model, not of the planner's sensing.
+  std::optional<leader> leader_of(agent_id self, const path& route, double length, const car_following_config& c,
+                                  double comfortable_deceleration) const {
     const agent_state& me = states[self];
-    const car_following_config& c = *spec.follower.car_following;
     const double v = me.speed;
-    const double preview =
-        30.0 + 3.0 * (c.jam_distance + v * c.time_gap) + v * v / (2.0 * spec.follower.comfortable_deceleration);
-    const double front = 0.5 * spec.shape.length;
+    const double preview = 30.0 + 3.0 * (c.jam_distance + v * c.time_gap) + v * v / (2.0 * comfortable_deceleration);
+    const double front = 0.5 * length;
     std::optional<leader> nearest;
     for (agent_id j = 0; j < states.size(); ++j) {
       const agent_state& other = states[j];
       if (j == self || !other.present() || infos[j].kind == agent_kind::static_obstacle) continue;
       const double reach = preview + front + radii[j];
       if (squared_norm(other.pose.position - me.pose.position) > reach * reach) continue;
-      const path_projection p = spec.path.project(other.pose.position, me.arc_length + 0.5 * preview, 0.5 * preview);
+      const path_projection p = route.project(other.pose.position, me.arc_length + 0.5 * preview, 0.5 * preview);
       if (p.distance > c.corridor_half_width || !(p.arc_length > me.arc_length)) continue;
       const vec2 along = unit_vector(p.nearest.heading);
       const double heading_along = dot(unit_vector(other.pose.heading), along);  // cos of the heading difference
@@ -754,6 +812,7 @@ simulation& simulation::operator=(simulation&&) noexcept = default;
 void simulation::step() {
   impl& m = *impl_;
   if (m.ended()) return;
+  m.react();
   ++m.step;
   m.advance_agents(m.sc.time_step, false);
   m.detect_crashes();

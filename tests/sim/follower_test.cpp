@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <vector>
 
 #include "mm/sim/simulation.hpp"
 #include "sim/scenarios.hpp"
@@ -224,6 +225,129 @@ TEST(sim_follower, car_following_follows_the_road_user_ahead_in_the_corridor_not
   const double gap = 25.0 - 4.5;
   const double desired = 2.0 + 15.0 + 15.0 * 10.0 / (2.0 * std::sqrt(3.0 * 2.0));
   EXPECT_NEAR(nominal_acceleration(true), std::max(-7.0, 3.0 * (1.0 - (desired / gap) * (desired / gap))), 1e-9);
+}
+
+TEST(sim_follower, a_lagging_scripted_vehicle_closes_on_its_script_within_its_limits_and_under_the_cap) {
+  const scripted_car_following k{};  // k_v = 1/s, a_max = 3, d_max = 7
+  scripted_sample script;
+  script.phase = motion_phase::moving;
+  script.arc_length = 14.0;
+  script.speed = 6.0;
+  script.acceleration = 0.5;
+  // a_script + k_v·(v_script − v) + k_v²·(s_script − s): 0.5 + 1 + 1 = 2.5 at s = 13 m and v = 5 m/s; the
+  // spring pulls back one that would be ahead (a run never lets it be): 0.5 + 1 − 2 = −0.5 at s = 16 m.
+  EXPECT_DOUBLE_EQ(lagging_acceleration(13.0, 5.0, script, std::numeric_limits<double>::infinity(), k), 2.5);
+  EXPECT_DOUBLE_EQ(lagging_acceleration(16.0, 5.0, script, std::numeric_limits<double>::infinity(), k), -0.5);
+  // On the script it takes the script's acceleration.
+  EXPECT_DOUBLE_EQ(lagging_acceleration(14.0, 6.0, script, std::numeric_limits<double>::infinity(), k), 0.5);
+  // Far behind: at most a_max; a leader caps it; a gap closed brakes at d_max.
+  EXPECT_DOUBLE_EQ(lagging_acceleration(0.0, 5.0, script, std::numeric_limits<double>::infinity(), k), 3.0);
+  EXPECT_DOUBLE_EQ(lagging_acceleration(0.0, 5.0, script, -1.25, k), -1.25);
+  EXPECT_DOUBLE_EQ(lagging_acceleration(0.0, 5.0, script, -std::numeric_limits<double>::infinity(), k), -7.0);
+}
+
+/// C, a scripted vehicle at 10 m/s (or along `profile`), behind A, a planning vehicle that drives
+/// without avoidance along the same line from 50 m ahead and stands until it starts at `a_leaves`
+/// [s] (never when infinite): the smallest bumper gap of C behind A, C's last state, and whether C
+/// was ever ahead of its script or C and A crashed.
+struct behind_a_standing_vehicle {
+  double smallest_gap = std::numeric_limits<double>::infinity();
+  double largest_lag = 0.0;  ///< how far C fell behind its script [m]
+  bool ahead_of_script = false;
+  bool crashed = false;
+  agent_state last;
+  scripted_sample last_script;
+};
+
+behind_a_standing_vehicle follow_a_standing_vehicle(const std::optional<scripted_car_following>& following,
+                                                    double a_leaves, const std::optional<stop_rule>& stop,
+                                                    double seconds) {
+  scenario s;
+  s.duration = seconds;
+  planning_vehicle a = cruising("A", straight_path({50.0, 0.0}, 0.0, 1000.0), 0.0);
+  a.avoidance = false;
+  if (std::isfinite(a_leaves)) a.desired_speed_profile = speed_profile{{{0.0, 0.0}, {a_leaves, 0.0}, {a_leaves + 2.0, 15.0}}};
+  s.planning_vehicles.push_back(a);
+  scripted_vehicle c = mm::sim::testing::scripted("C", straight_path({0.0, 0.0}, 0.0, 1000.0), 10.0);
+  c.motion.stop = stop;
+  c.car_following = following;
+  s.scripted_vehicles.push_back(c);
+  simulation sim(s);
+  behind_a_standing_vehicle seen;
+  run(sim, [&](const simulation& now) {
+    const agent_state& own = now.state(1);
+    const scripted_sample script = scripted_state(now.definition().scripted_vehicles[0].motion, now.time());
+    seen.smallest_gap = std::min(seen.smallest_gap, now.state(0).pose.position.x - own.pose.position.x - 4.5);
+    seen.largest_lag = std::max(seen.largest_lag, script.arc_length - own.arc_length);
+    seen.ahead_of_script = seen.ahead_of_script || own.arc_length > script.arc_length;
+    seen.last = own;
+    seen.last_script = script;
+  });
+  seen.crashed = !sim.crashes().empty();
+  return seen;
+}
+
+TEST(sim_follower, a_scripted_vehicle_with_car_following_stops_behind_a_standing_one_that_it_runs_into_without) {
+  const double seconds = mm::sim::testing::sanitize_scale() ? 15.0 : 20.0;
+  const behind_a_standing_vehicle kept =
+      follow_a_standing_vehicle(scripted_car_following{}, std::numeric_limits<double>::infinity(), std::nullopt, seconds);
+  EXPECT_FALSE(kept.crashed);
+  EXPECT_FALSE(kept.ahead_of_script);
+  // IDM settles at the jam distance s0 = 2 m as it comes to rest.
+  EXPECT_GT(kept.smallest_gap, 1.95);
+  EXPECT_LT(kept.last.pose.position.x, 50.0 - 4.5 - 1.95);
+  EXPECT_LT(kept.last.speed, 0.3);
+  EXPECT_EQ(kept.last.status, agent_status::active);
+  const behind_a_standing_vehicle replayed =
+      follow_a_standing_vehicle(std::nullopt, std::numeric_limits<double>::infinity(), std::nullopt, seconds);
+  EXPECT_TRUE(replayed.crashed);
+  std::printf("C behind a standing vehicle: smallest bumper gap %.3f m, speed at %.0f s %.3f m/s; without car "
+              "following it runs into it\n",
+              kept.smallest_gap, seconds, kept.last.speed);
+}
+
+TEST(sim_follower, a_lagging_scripted_vehicle_catches_up_with_its_script_and_keeps_to_it_again) {
+  // A stands for 4 s, then drives off at 15 m/s; C, held up behind it, catches up with its script,
+  // which stops for ever at 150 m, and ends exactly where the script does.
+  const behind_a_standing_vehicle seen =
+      follow_a_standing_vehicle(scripted_car_following{}, 4.0, stop_rule{150.0, std::nullopt}, 25.0);
+  EXPECT_FALSE(seen.crashed);
+  EXPECT_FALSE(seen.ahead_of_script);
+  EXPECT_GT(seen.largest_lag, 5.0);
+  EXPECT_EQ(seen.last.status, agent_status::stopped);
+  EXPECT_EQ(seen.last.arc_length, seen.last_script.arc_length);
+  EXPECT_EQ(seen.last.arc_length, 150.0);
+  std::printf("C held up by up to %.2f m behind its script, then on it again at its stop\n", seen.largest_lag);
+}
+
+TEST(sim_follower, a_scripted_vehicle_with_nothing_to_follow_keeps_to_its_script_bit_for_bit) {
+  // B accelerates, brakes and stops on its way; A drives in the next lane, D crosses B's path ahead
+  // of it: nothing B would follow. Every state of every agent is the same with and without B's car
+  // following.
+  const auto states_of = [](bool following) {
+    scenario s;
+    s.duration = 8.0;
+    s.planning_vehicles.push_back(cruising("A", straight_path({20.0, 3.5}, 0.0, 400.0), 12.0));
+    scripted_vehicle b = mm::sim::testing::scripted("B", straight_path({0.0, 0.0}, 0.0, 400.0), 0.0);
+    b.motion.speed = speed_profile{{{0.0, 8.0}, {2.0, 14.0}, {4.0, 6.0}}};
+    b.motion.stop = stop_rule{60.0, 1.0};
+    if (following) b.car_following = scripted_car_following{};
+    s.scripted_vehicles.push_back(b);
+    s.scripted_vehicles.push_back(mm::sim::testing::scripted("D", straight_path({70.0, 40.0}, -pi / 2.0, 400.0), 8.0));
+    simulation sim(s);
+    std::vector<agent_state> all;
+    run(sim, [&](const simulation& now) { all.insert(all.end(), now.states().begin(), now.states().end()); });
+    return all;
+  };
+  const std::vector<agent_state> with = states_of(true);
+  const std::vector<agent_state> without = states_of(false);
+  ASSERT_EQ(with.size(), without.size());
+  for (std::size_t i = 0; i < with.size(); ++i) {
+    ASSERT_EQ(with[i].pose.position.x, without[i].pose.position.x) << "state " << i;
+    ASSERT_EQ(with[i].pose.position.y, without[i].pose.position.y) << "state " << i;
+    ASSERT_EQ(with[i].speed, without[i].speed) << "state " << i;
+    ASSERT_EQ(with[i].status, without[i].status) << "state " << i;
+  }
 }
 
 }  // namespace

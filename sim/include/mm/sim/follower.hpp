@@ -5,6 +5,7 @@
 
 #include "mm/maneuver.hpp"
 #include "mm/sim/path.hpp"
+#include "mm/sim/scripted.hpp"
 
 namespace mm::sim {
 
@@ -37,6 +38,27 @@ struct leader {
 /// behind a leader of constant speed.
 double car_following_acceleration(double speed, const leader& ahead, const car_following_config& config,
                                   double max_acceleration, double comfortable_deceleration);
+
+/// Car following for a scripted vehicle, an addition to spec §8 (docs/simulator.md §5). The vehicle
+/// keeps to its script while car following lets it; once `car_following_acceleration` behind the
+/// road user ahead on its path allows less than the script's acceleration, it lags behind the
+/// script, with `lagging_acceleration`, until it has caught up with it again (or reached the
+/// path's end). It is never ahead of its script: it can only be later along the same path.
+struct scripted_car_following {
+  car_following_config following;
+  double max_acceleration = 3.0;          ///< a [m/s²] > 0, of the car-following term and of catching up (spec §3's a_max)
+  double comfortable_deceleration = 2.0;  ///< b [m/s²] > 0, of the car-following term
+  double max_deceleration = 7.0;          ///< d_max [m/s²] > 0: its hardest braking (spec §3's default)
+  double speed_gain = 1.0;                ///< k_v [1/s] > 0: how fast it takes up its script again
+};
+
+/// The acceleration of a scripted vehicle at arc length s [m] and speed v [m/s] that lags behind
+/// its script `script` (its state at the same time) [m/s²]: it closes on the script,
+/// a = a_script + k_v·(v_script − v) + k_v²·(s_script − s) (a spring of natural frequency k_v,
+/// damped at half the critical rate, so that it reaches the script rather than creeping up on it),
+/// at most `cap` (car following's; +∞ without a leader), and within [−d_max, a_max].
+double lagging_acceleration(double arc_length, double speed, const scripted_sample& script, double cap,
+                            const scripted_car_following& config);
 
 /// Parameters of the path follower that produces the nominal maneuver u_nom (spec §8).
 struct follower_config {

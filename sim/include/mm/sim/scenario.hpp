@@ -62,11 +62,15 @@ struct planning_vehicle {
   std::size_t planning_period = 1;
 };
 
-/// A vehicle that replays `motion`, ignoring every other agent (the paper's B).
+/// A vehicle that replays `motion`, ignoring every other agent (the paper's B), or, with car
+/// following, slowing behind the road user ahead on its path.
 struct scripted_vehicle {
   std::string name;
   scripted_motion motion;
   mm::rectangle shape;  ///< footprint [m]
+  /// Keeping a distance to the road user ahead, lagging behind `motion` where it must (an
+  /// addition to spec §8); none: exactly `motion`, as the paper's B.
+  std::optional<scripted_car_following> car_following;
 };
 
 /// A pedestrian that replays `motion` (usually a constant speed and perhaps a stop at the kerb).
