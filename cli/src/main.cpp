@@ -347,6 +347,7 @@ struct replay_command_options {
   std::optional<double> desired_speed_kmh;
   bool no_avoidance = false;
   bool on_lanelets = false;
+  bool reactive = false;
   std::string out;
   bool plots = false;
 };
@@ -357,6 +358,7 @@ int replay_command(const replay_command_options& o) {
   if (o.desired_speed_kmh) options.desired_speed = *o.desired_speed_kmh / 3.6;
   options.avoidance = !o.no_avoidance;
   options.on_lanelets = o.on_lanelets;
+  if (o.reactive) options.reactive = mm::sim::scripted_car_following{};
   const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
   const sf::loaded_scenario loaded = [&] {
     try {
@@ -378,9 +380,10 @@ int replay_command(const replay_command_options& o) {
   const std::string desired = ego.desired_speed_profile ? std::string("its recorded speeds")
                                                          : mm::cli::fixed(ego.desired_speed * 3.6, 1) + " km/h";
   std::cout << fmt::format("{}: road user {} driven by the planner ({}), desired speed {}, policy {}; "
-                           "the others replayed; ended at t = {} s\n",
+                           "the others replayed{}; ended at t = {} s\n",
                            name, options.agent, options.avoidance ? "avoiding" : "without avoidance", desired,
-                           sf::policy_name(options.config.policy), mm::cli::fixed(outcome.end_time, 2));
+                           sf::policy_name(options.config.policy),
+                           options.reactive ? ", reacting (car following)" : "", mm::cli::fixed(outcome.end_time, 2));
   std::cout << mm::cli::metrics_table(outcome.metrics, false);
   std::cout << "written to " << settings.out_dir.string() << "/\n";
   if (o.plots) plot_into(settings.out_dir);
@@ -506,6 +509,10 @@ int main(int argc, char** argv) {
   replay->add_flag("--on-lanelets", replay_options.on_lanelets,
                    "Keep the planned road user on the union of the file's lanelets within T_h (the road constraint of "
                    "spec §5)");
+  replay->add_flag("--reactive", replay_options.reactive,
+                   "The other vehicles keep their distance to the road user ahead on their recorded paths (the "
+                   "driven one too), lagging behind their recordings where they must (car following, "
+                   "docs/commonroad.md)");
   replay->add_option("--out", replay_options.out, "Output directory (default out/<file name>-replay)")
       ->type_name("DIR");
   replay->add_flag("--plots", replay_options.plots, "Then draw the run's figures into its output directory");

@@ -162,7 +162,8 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
       out.static_obstacles.push_back({replay_name(o), world_polygon(o.shape, o.states.front())});
       continue;
     }
-    if (p.points.size() < 2) {
+    const bool moves = p.points.size() >= 2;
+    if (!moves) {
       // Standing for its recorded steps: a path of 1 mm along its heading, which it leaves at once
       // after its last state as a moving road user does.
       const state& x = o.states.front();
@@ -175,7 +176,7 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
     motion.speed = profile_of(p, s.time_step);
     check_limits(o, &motion.speed, s.time_step);
     if (const auto* r = std::get_if<rectangle>(&o.shape)) {
-      out.scripted_vehicles.push_back({replay_name(o), std::move(motion), *r});
+      out.scripted_vehicles.push_back({replay_name(o), std::move(motion), *r, moves ? options.reactive : std::nullopt});
     } else if (const auto* d = std::get_if<disc>(&o.shape)) {
       out.pedestrians.push_back({replay_name(o), std::move(motion), d->radius});
     } else {

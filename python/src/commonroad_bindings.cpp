@@ -210,7 +210,7 @@ void bind_commonroad(py::module_& m) {
   m.def("replay_scenario",
         [](const cr::scenario& s, std::uint32_t agent, const std::optional<planner_config>& config,
            const std::optional<forecast_policy>& policy, const std::optional<ego_limits>& limits,
-           const std::optional<double>& desired_speed, bool avoidance, bool on_lanelets) {
+           const std::optional<double>& desired_speed, bool avoidance, bool on_lanelets, bool reactive) {
           cr::replay_options options;
           const cr::measure_options measured = options_of(agent, config, policy, limits);
           options.agent = agent;
@@ -219,14 +219,16 @@ void bind_commonroad(py::module_& m) {
           options.desired_speed = desired_speed;
           options.avoidance = avoidance;
           options.on_lanelets = on_lanelets;
+          if (reactive) options.reactive = mm::sim::scripted_car_following{};
           return cr::replay_scenario(s, options);
         },
         py::arg("scenario"), py::arg("agent"), py::kw_only(), py::arg("config") = py::none(),
         py::arg("policy") = py::none(), py::arg("limits") = py::none(), py::arg("desired_speed") = py::none(),
-        py::arg("avoidance") = true, py::arg("on_lanelets") = false,
+        py::arg("avoidance") = true, py::arg("on_lanelets") = false, py::arg("reactive") = false,
         "The recording as a simulation scenario with road user `agent` driven by the planner along its recorded "
-        "path and the others replayed (docs/commonroad.md); run it with maneuvermap.sim.run. measure_error when "
-        "it cannot be replayed.");
+        "path and the others replayed (docs/commonroad.md); with reactive=True the other vehicles keep their "
+        "distance to the road user ahead on their paths, lagging behind their recordings where they must. Run it "
+        "with maneuvermap.sim.run. measure_error when it cannot be replayed.");
   m.def("measurable_road_users", &cr::measurable_road_users, py::arg("scenario"),
         "The dynamic obstacles that are not pedestrians, in file order.");
   m.def("recorded_ego", &cr::recorded_ego, py::arg("scenario"), py::arg("problem"),

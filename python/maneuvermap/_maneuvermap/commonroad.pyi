@@ -172,8 +172,8 @@ def recorded_ego(scenario: scenario, problem: planning_problem) -> Optional[int]
     """The obstacle that replays the planning problem's ego, or None (docs/commonroad.md)."""
     ...
 
-def replay_scenario(scenario: scenario, agent: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ..., desired_speed: Optional[float] = ..., avoidance: bool = ..., on_lanelets: bool = ...) -> _sim.scenario:
-    """The recording as a simulation scenario with road user `agent` driven by the planner along its recorded path and the others replayed (docs/commonroad.md); run it with maneuvermap.sim.run. measure_error when it cannot be replayed."""
+def replay_scenario(scenario: scenario, agent: int, *, config: Optional[_core.planner_config] = ..., policy: Optional[_core.forecast_policy] = ..., limits: Optional[_core.ego_limits] = ..., desired_speed: Optional[float] = ..., avoidance: bool = ..., on_lanelets: bool = ..., reactive: bool = ...) -> _sim.scenario:
+    """The recording as a simulation scenario with road user `agent` driven by the planner along its recorded path and the others replayed (docs/commonroad.md); with reactive=True the other vehicles keep their distance to the road user ahead on their paths, lagging behind their recordings where they must. Run it with maneuvermap.sim.run. measure_error when it cannot be replayed."""
     ...
 
 def room(result: _core.plan_result) -> float:

@@ -24,6 +24,11 @@ struct replay_options {
   /// The road constraint (spec §5) on the lanelets: the replay's drivable area is their union
   /// (`lanelet_polygons`), which the planned road user keeps to within T_h while it is on it.
   bool on_lanelets = false;
+  /// Reactive replay: every other moving vehicle (a rectangle) keeps its distance to the road user
+  /// ahead on its recorded path — the driven one too — lagging behind its recording where it must
+  /// and never ahead of it (`sim::scripted_car_following`, docs/commonroad.md); none: they replay
+  /// their recordings exactly. Pedestrians (discs) do not react.
+  std::optional<sim::scripted_car_following> reactive;
 };
 
 /// The recording as a simulation (closed loop for one road user, the others replayed):
@@ -37,7 +42,7 @@ struct replay_options {
 ///   its recorded steps); a rectangle becomes a scripted vehicle, a disc a pedestrian;
 /// - static obstacles keep their footprint (a disc as the 16-gon around it).
 /// The run lasts until the last recorded step, at the simulator's 100 Hz. The replayed road users do
-/// not react to the planned one. Throws `measure_error` naming the road user that cannot be replayed
+/// not react to the planned one unless `options.reactive` is set. Throws `measure_error` naming the road user that cannot be replayed
 /// (not a vehicle, a footprint that is neither a rectangle nor a disc) and why.
 sim::scenario replay_scenario(const scenario& s, const replay_options& options);
 
