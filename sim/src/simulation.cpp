@@ -384,8 +384,8 @@ struct simulation::impl {
 
   /// Car following of the scripted vehicles that have it, from the states at the step's start (so
   /// that the order in which agents move does not matter): a vehicle on its script starts to lag
-  /// when car following allows less than the script's acceleration; a lagging one takes
-  /// `lagging_acceleration`.
+  /// when car following allows less than the script's acceleration over the step; a lagging one
+  /// takes `lagging_acceleration`.
   void react() {
     for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
       lag& l = lags[id];
@@ -397,11 +397,16 @@ struct simulation::impl {
       if (const std::optional<leader> ahead = leader_of(id, m.path, l.length, k.following, k.comfortable_deceleration)) {
         cap = car_following_acceleration(s.speed, *ahead, k.following, k.max_acceleration, k.comfortable_deceleration);
       }
+      // The script's acceleration over the step, not at its start: a replayed recording's speeds
+      // jump at its steps (within 10⁻⁷ s), and the slope there is no acceleration to take.
+      scripted_sample script = scripted_state(m, now());
+      script.acceleration =
+          (scripted_state(m, static_cast<double>(step + 1) * sc.time_step).speed - script.speed) / sc.time_step;
       if (!l.lagging) {
-        if (!(cap < s.acceleration)) continue;
+        if (!(cap < script.acceleration)) continue;
         l.lagging = true;
       }
-      l.acceleration = lagging_acceleration(s.arc_length, s.speed, scripted_state(m, now()), cap, k);
+      l.acceleration = lagging_acceleration(s.arc_length, s.speed, script, cap, k);
     }
   }
 

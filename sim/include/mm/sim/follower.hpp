@@ -53,7 +53,8 @@ struct scripted_car_following {
 };
 
 /// The acceleration of a scripted vehicle at arc length s [m] and speed v [m/s] that lags behind
-/// its script `script` (its state at the same time) [m/s²]: it closes on the script,
+/// its script `script` (its state at the same time, with its acceleration over the coming step)
+/// [m/s²]: it closes on the script,
 /// a = a_script + k_v·(v_script − v) + k_v²·(s_script − s) (a spring of natural frequency k_v,
 /// damped at half the critical rate, so that it reaches the script rather than creeping up on it),
 /// at most `cap` (car following's; +∞ without a leader), and within [−d_max, a_max].
