@@ -219,6 +219,51 @@ TEST(replay, on_the_lanelets_the_replay_s_drivable_area_is_their_union_and_the_d
 
 /// The message of the measure_error `replay_scenario(s, driven)` throws; "no measure_error" if it
 /// throws none.
+TEST(replay, a_reactive_replay_gives_car_following_to_every_other_moving_vehicle_and_to_no_one_else) {
+  replay_options options;
+  options.agent = 1;
+  const mm::sim::scenario plain = replay_scenario(traffic(), options);
+  options.reactive = mm::sim::scripted_car_following{};
+  options.reactive->following.time_gap = 1.5;
+  const mm::sim::scenario reactive = replay_scenario(traffic(), options);
+  ASSERT_EQ(reactive.scripted_vehicles.size(), 2U);
+  for (const mm::sim::scripted_vehicle& v : plain.scripted_vehicles) EXPECT_FALSE(v.car_following) << v.name;
+  // Car 2 moves and follows; car 4 never moves (it stands where it was recorded); pedestrian 3
+  // walks as recorded.
+  EXPECT_EQ(reactive.scripted_vehicles[0].name, "car-2");
+  ASSERT_TRUE(reactive.scripted_vehicles[0].car_following.has_value());
+  EXPECT_EQ(reactive.scripted_vehicles[0].car_following->following.time_gap, 1.5);
+  EXPECT_EQ(reactive.scripted_vehicles[1].name, "car-4");
+  EXPECT_FALSE(reactive.scripted_vehicles[1].car_following.has_value());
+  EXPECT_EQ(reactive.pedestrians.size(), 1U);
+}
+
+TEST(replay, in_a_reactive_replay_the_car_behind_brakes_for_the_driven_one_that_the_recorded_one_runs_into) {
+  // Car 1 and car 3, 20 m behind it, recorded at 10 m/s east for 5 s. Car 1 is driven with a desired
+  // speed of 0 and no planner: it brakes to a stop. Replayed as recorded, car 3 runs into it; in a
+  // reactive replay it brakes behind it.
+  scenario s;
+  s.version = "2020a";
+  s.time_step = 0.1;
+  s.obstacles.push_back(recorded(1, "car", {{0, 0}, 0.0}, constant(10.0, 51), 0.0, 0));
+  s.obstacles.push_back(recorded(3, "car", {{-20, 0}, 0.0}, constant(10.0, 51), 0.0, 0));
+  replay_options options;
+  options.agent = 1;
+  options.avoidance = false;
+  options.desired_speed = 0.0;
+  const auto crash_of = [&](bool reactive) {
+    options.reactive = reactive ? std::optional(mm::sim::scripted_car_following{}) : std::nullopt;
+    mm::sim::simulation sim(replay_scenario(s, options));
+    mm::sim::run(sim);
+    return sim.metrics(0);
+  };
+  const mm::sim::run_metrics recorded_behind = crash_of(false);
+  EXPECT_TRUE(recorded_behind.crash);
+  const mm::sim::run_metrics reacting_behind = crash_of(true);
+  EXPECT_FALSE(reacting_behind.crash);
+  EXPECT_GT(reacting_behind.min_dist_m.value(), 1.0);
+}
+
 std::string refusal(const scenario& s, std::uint32_t driven) {
   replay_options options;
   options.agent = driven;
