@@ -358,7 +358,7 @@ int replay_command(const replay_command_options& o) {
   if (o.desired_speed_kmh) options.desired_speed = *o.desired_speed_kmh / 3.6;
   options.avoidance = !o.no_avoidance;
   options.on_lanelets = o.on_lanelets;
-  if (o.reactive) options.reactive = mm::sim::scripted_car_following{};
+  if (o.reactive) options.reactive = mm::commonroad::reactive_traffic();
   const mm::commonroad::scenario recording = mm::commonroad::read_scenario(o.file);
   const sf::loaded_scenario loaded = [&] {
     try {

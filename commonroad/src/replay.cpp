@@ -105,6 +105,12 @@ sim::path polyline_of(const obstacle& o, const std::vector<vec2>& points) {
 
 }  // namespace
 
+sim::scripted_car_following reactive_traffic() {
+  sim::scripted_car_following k;
+  k.follows_scripted = false;
+  return k;
+}
+
 std::string replay_name(const obstacle& o) {
   return (o.type.empty() ? "obstacle" : o.type) + "-" + std::to_string(o.id);
 }

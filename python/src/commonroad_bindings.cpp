@@ -219,7 +219,7 @@ void bind_commonroad(py::module_& m) {
           options.desired_speed = desired_speed;
           options.avoidance = avoidance;
           options.on_lanelets = on_lanelets;
-          if (reactive) options.reactive = mm::sim::scripted_car_following{};
+          if (reactive) options.reactive = cr::reactive_traffic();
           return cr::replay_scenario(s, options);
         },
         py::arg("scenario"), py::arg("agent"), py::kw_only(), py::arg("config") = py::none(),

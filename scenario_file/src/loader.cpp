@@ -562,7 +562,7 @@ class mapper {
   /// a planning vehicle takes from its limits and its follower.
   mm::sim::scripted_car_following read_scripted_car_following(const map_view& f) const {
     f.allow(concat(car_following_keys(), {"max_acceleration_mps2", "comfortable_deceleration_mps2",
-                                          "max_deceleration_mps2", "speed_gain_per_s"}));
+                                          "max_deceleration_mps2", "speed_gain_per_s", "follows_scripted"}));
     mm::sim::scripted_car_following k;
     k.following = read_car_following(f);
     k.max_acceleration = f.quantity_or("max_acceleration", {mps2}, k.max_acceleration, range::positive);
@@ -570,6 +570,7 @@ class mapper {
         f.quantity_or("comfortable_deceleration", {mps2}, k.comfortable_deceleration, range::positive);
     k.max_deceleration = f.quantity_or("max_deceleration", {mps2}, k.max_deceleration, range::positive);
     k.speed_gain = f.quantity_or("speed_gain", {per_second}, k.speed_gain, range::positive);
+    if (auto b = f.get("follows_scripted")) k.follows_scripted = read_bool(ctx_, *b);
     return k;
   }
 

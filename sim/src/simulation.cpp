@@ -189,6 +189,7 @@ struct simulation::impl {
     double acceleration = 0.0;  ///< [m/s²]
   };
   std::vector<lag> lags;  ///< per id
+  std::vector<agent_id> starting_to_lag;  ///< `react`'s
   std::vector<vehicle> vehicles;                   ///< ids 0..P−1
   std::unique_ptr<detail::worker_pool> pool;       ///< the helper threads of `decide` (jobs > 1), kept for the run
   std::vector<planner_set> planners;               ///< [thread of `decide`]
@@ -387,6 +388,9 @@ struct simulation::impl {
   /// when car following allows less than the script's acceleration over the step; a lagging one
   /// takes `lagging_acceleration`.
   void react() {
+    // Who lags is read by the others' leader searches (`follows_scripted`): the vehicles that start
+    // to lag this step are marked after every decision.
+    starting_to_lag.clear();
     for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
       lag& l = lags[id];
       if (l.config == nullptr || states[id].status != agent_status::active) continue;
@@ -394,7 +398,8 @@ struct simulation::impl {
       const scripted_motion& m = *motions[id];
       const scripted_car_following& k = *l.config;
       double cap = inf;
-      if (const std::optional<leader> ahead = leader_of(id, m.path, l.length, k.following, k.comfortable_deceleration)) {
+      if (const std::optional<leader> ahead =
+              leader_of(id, m.path, l.length, k.following, k.comfortable_deceleration, k.follows_scripted)) {
         cap = car_following_acceleration(s.speed, *ahead, k.following, k.max_acceleration, k.comfortable_deceleration);
       }
       // The script's acceleration over the step, not at its start: a replayed recording's speeds
@@ -404,10 +409,11 @@ struct simulation::impl {
           (scripted_state(m, static_cast<double>(step + 1) * sc.time_step).speed - script.speed) / sc.time_step;
       if (!l.lagging) {
         if (!(cap < script.acceleration)) continue;
-        l.lagging = true;
+        starting_to_lag.push_back(id);
       }
       l.acceleration = lagging_acceleration(s.arc_length, s.speed, script, cap, k);
     }
+    for (const agent_id id : starting_to_lag) lags[id].lagging = true;
   }
 
   // --- 2. crashes ------------------------------------------------------------------------------
@@ -614,7 +620,7 @@ struct simulation::impl {
     if (spec.follower.car_following) {
       if (const std::optional<leader> ahead = leader_of(id_of(v), spec.path, spec.shape.length,
                                                         *spec.follower.car_following,
-                                                        spec.follower.comfortable_deceleration)) {
+                                                        spec.follower.comfortable_deceleration, true)) {
         const double most = car_following_acceleration(s.speed, *ahead, *spec.follower.car_following,
                                                        spec.limits.max_acceleration,
                                                        spec.follower.comfortable_deceleration);
@@ -629,11 +635,12 @@ struct simulation::impl {
   /// The nearest road user ahead of vehicle `self` (of length `length` [m]) on its path — its
   /// reference point within the corridor beside the path, ahead of the vehicle's own projection and
   /// within a preview of 30 m + 3·(s0 + v·T) + v²/(2b), heading along the path within the largest
-  /// heading difference; static obstacles are the planner's — with the gap from the vehicle's front
-  /// to its rear along the path, and its speed along the path. From the true states: car following
-  /// is part of the driver model, not of the planner's sensing.
+  /// heading difference; static obstacles are the planner's; without `scripted_too`, only road
+  /// users that do not keep to a script (planning vehicles, lagging scripted vehicles) — with the
+  /// gap from the vehicle's front to its rear along the path, and its speed along the path. From
+  /// the true states: car following is part of the driver model, not of the planner's sensing.
   std::optional<leader> leader_of(agent_id self, const path& route, double length, const car_following_config& c,
-                                  double comfortable_deceleration) const {
+                                  double comfortable_deceleration, bool scripted_too) const {
     const agent_state& me = states[self];
     const double v = me.speed;
     const double preview = 30.0 + 3.0 * (c.jam_distance + v * c.time_gap) + v * v / (2.0 * comfortable_deceleration);
@@ -642,6 +649,7 @@ struct simulation::impl {
     for (agent_id j = 0; j < states.size(); ++j) {
       const agent_state& other = states[j];
       if (j == self || !other.present() || infos[j].kind == agent_kind::static_obstacle) continue;
+      if (!scripted_too && motions[j] != nullptr && !lags[j].lagging) continue;  // on its script
       const double reach = preview + front + radii[j];
       if (squared_norm(other.pose.position - me.pose.position) > reach * reach) continue;
       const path_projection p = route.project(other.pose.position, me.arc_length + 0.5 * preview, 0.5 * preview);

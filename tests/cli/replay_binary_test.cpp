@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <map>
 #include <string>
+#include <vector>
 
 #include "cli/support.hpp"
 
@@ -60,6 +62,33 @@ TEST(maneuvermap_replay, without_avoidance_the_car_keeps_its_speed_and_path_and_
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "(without avoidance), desired speed 30.0 km/h")) << r.out;
   EXPECT_TRUE(csv_rows(dir / "run/map.csv").empty());
+}
+
+TEST(maneuvermap_replay, with_reactive_traffic_the_car_behind_the_driven_one_keeps_its_distance_and_no_other_changes) {
+  // USA_Lanker-1_1: car 1216 drives 14 m behind car 1214, closer than car following's desired gap.
+  // Replayed as recorded, every other road user is where it was recorded; reacting, car 1216 falls
+  // behind its recording, and the road users that follow none that deviates keep to theirs.
+  const temp_dir dir("replay_reactive");
+  const std::string file = recording("USA_Lanker-1_1_T-1") + " --agent 1214 --out ";
+  const result plain = replay(file + (dir / "plain").string(), dir);
+  ASSERT_EQ(plain.code, 0) << plain.err;
+  const result reactive = replay(file + (dir / "reactive").string() + " --reactive", dir);
+  ASSERT_EQ(reactive.code, 0) << reactive.err;
+  EXPECT_TRUE(contains(reactive.out, "the others replayed, reacting (car following)")) << reactive.out;
+  EXPECT_FALSE(contains(plain.out, "reacting")) << plain.out;
+  const auto rows_of = [&](const char* run) {
+    std::map<std::string, std::vector<std::vector<std::string>>> rows;
+    for (const auto& row : csv_rows(dir / run / "trajectories.csv")) rows[row[1]].push_back(row);
+    return rows;
+  };
+  const auto as_recorded = rows_of("plain");
+  const auto reacting = rows_of("reactive");
+  ASSERT_EQ(as_recorded.size(), reacting.size());
+  std::vector<std::string> changed;
+  for (const auto& [name, rows] : as_recorded) {
+    if (name != "car-1214" && reacting.at(name) != rows) changed.push_back(name);
+  }
+  EXPECT_EQ(changed, std::vector<std::string>{"car-1216"});
 }
 
 TEST(maneuvermap_replay, bad_input_exits_2_with_a_message_that_says_what_was_wrong) {

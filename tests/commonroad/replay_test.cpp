@@ -252,7 +252,7 @@ TEST(replay, in_a_reactive_replay_the_car_behind_brakes_for_the_driven_one_that_
   options.avoidance = false;
   options.desired_speed = 0.0;
   const auto crash_of = [&](bool reactive) {
-    options.reactive = reactive ? std::optional(mm::sim::scripted_car_following{}) : std::nullopt;
+    options.reactive = reactive ? std::optional(reactive_traffic()) : std::nullopt;
     mm::sim::simulation sim(replay_scenario(s, options));
     mm::sim::run(sim);
     return sim.metrics(0);

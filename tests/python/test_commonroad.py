@@ -86,6 +86,19 @@ def test_a_replay_drives_one_road_user_with_the_planner_and_replays_the_others(s
         mm.commonroad.replay_scenario(s, 35)
 
 
+def test_a_reactive_replay_holds_up_the_car_behind_the_driven_one(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / "data/commonroad/USA_Lanker-1_1_T-1.xml")
+    plain = mm.sim.run(mm.commonroad.replay_scenario(s, 1214), map_columns=False)
+    reactive = mm.sim.run(mm.commonroad.replay_scenario(s, 1214, reactive=True), map_columns=False)
+    names = [a.name for a in plain.agents]
+    behind = names.index("car-1216")
+    # Car 1216, 14 m behind the driven car, falls behind its recording.
+    both = plain.present[:, behind] & reactive.present[:, behind]
+    lag = np.hypot(plain.x[both, behind] - reactive.x[both, behind], plain.y[both, behind] - reactive.y[both, behind])
+    assert lag.max() > 1.0
+    assert reactive.metrics[0].crash == plain.metrics[0].crash
+
+
 def test_on_its_lanelets_a_road_user_has_at_most_the_room_it_has_off_them(source_dir):
     s = mm.commonroad.read_scenario(source_dir / "data/commonroad/USA_Lanker-1_1_T-1.xml")
     open_ground = mm.commonroad.measure(s, 1214)

@@ -91,7 +91,7 @@ agents:
     footprint: {length_m: 4, width_m: 1.7}
     car_following: {time_gap_s: 2, jam_distance_m: 1, corridor_half_width_m: 1.2, max_heading_difference_deg: 30,
                     max_acceleration_mps2: 1.5, comfortable_deceleration_mps2: 2.5, max_deceleration_mps2: 6,
-                    speed_gain_per_s: 0.5}
+                    speed_gain_per_s: 0.5, follows_scripted: false}
   - name: P
     kind: pedestrian
     path: {arc: {center_m: [0, 0], radius_m: 5, start_angle_deg: 0, sweep_deg: 180}}
@@ -196,6 +196,7 @@ TEST(scenario_file, every_field_is_mapped_onto_the_simulator_in_si_units) {
   EXPECT_DOUBLE_EQ(b.car_following->comfortable_deceleration, 2.5);
   EXPECT_DOUBLE_EQ(b.car_following->max_deceleration, 6.0);
   EXPECT_DOUBLE_EQ(b.car_following->speed_gain, 0.5);
+  EXPECT_FALSE(b.car_following->follows_scripted);
 
   EXPECT_NEAR(s.pedestrians[0].motion.path.length(), 5.0 * pi, 1e-9);
   EXPECT_DOUBLE_EQ(s.pedestrians[0].radius, 0.3);  // from the defaults

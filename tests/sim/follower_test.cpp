@@ -8,6 +8,7 @@
 #include <limits>
 #include <numbers>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "mm/sim/simulation.hpp"
@@ -348,6 +349,55 @@ TEST(sim_follower, a_scripted_vehicle_with_nothing_to_follow_keeps_to_its_script
     ASSERT_EQ(with[i].speed, without[i].speed) << "state " << i;
     ASSERT_EQ(with[i].status, without[i].status) << "state " << i;
   }
+}
+
+TEST(sim_follower, a_scripted_vehicle_that_follows_only_road_users_off_their_scripts_leaves_the_scripts_as_they_are) {
+  // C at 10 m/s 30 m behind B at 5 m/s, both scripted on one line: following whatever is ahead, C
+  // is held up behind B; following only road users off their scripts, C keeps to its script (the
+  // scripts' meeting is theirs to have, as in a recording).
+  const auto c_lags = [](bool follows_scripted) {
+    scenario s;
+    s.duration = 8.0;
+    s.scripted_vehicles.push_back(mm::sim::testing::scripted("B", straight_path({30.0, 0.0}, 0.0, 300.0), 5.0));
+    scripted_vehicle c = mm::sim::testing::scripted("C", straight_path({0.0, 0.0}, 0.0, 300.0), 10.0);
+    c.car_following = scripted_car_following{};
+    c.car_following->follows_scripted = follows_scripted;
+    s.scripted_vehicles.push_back(c);
+    simulation sim(s);
+    double lag = 0.0;
+    run(sim, [&](const simulation& now) {
+      lag = std::max(lag, scripted_state(now.definition().scripted_vehicles[1].motion, now.time()).arc_length -
+                              now.state(1).arc_length);
+    });
+    return lag;
+  };
+  EXPECT_GT(c_lags(true), 5.0);
+  EXPECT_EQ(c_lags(false), 0.0);
+
+  // A stands at 100 m; B (from 50 m) and C (from 20 m) drive at 10 m/s behind it, following only road
+  // users off their scripts: B is held up behind A, and C, behind B, in turn.
+  scenario s;
+  s.duration = 15.0;
+  planning_vehicle a = cruising("A", straight_path({100.0, 0.0}, 0.0, 1000.0), 0.0);
+  a.avoidance = false;
+  s.planning_vehicles.push_back(a);
+  for (const auto& [name, x] : {std::pair{"B", 50.0}, std::pair{"C", 20.0}}) {
+    scripted_vehicle v = mm::sim::testing::scripted(name, straight_path({x, 0.0}, 0.0, 1000.0), 10.0);
+    v.car_following = scripted_car_following{};
+    v.car_following->follows_scripted = false;
+    s.scripted_vehicles.push_back(v);
+  }
+  simulation sim(s);
+  double a_to_b = std::numeric_limits<double>::infinity();
+  double b_to_c = std::numeric_limits<double>::infinity();
+  run(sim, [&](const simulation& now) {
+    a_to_b = std::min(a_to_b, now.state(0).pose.position.x - now.state(1).pose.position.x - 4.5);
+    b_to_c = std::min(b_to_c, now.state(1).pose.position.x - now.state(2).pose.position.x - 4.5);
+  });
+  EXPECT_TRUE(sim.crashes().empty());
+  EXPECT_GT(a_to_b, 1.9);
+  EXPECT_GT(b_to_c, 1.9);
+  EXPECT_LT(sim.state(2).speed, 0.5) << "C stops behind B";
 }
 
 }  // namespace

@@ -50,6 +50,10 @@ struct scripted_car_following {
   double comfortable_deceleration = 2.0;  ///< b [m/s²] > 0, of the car-following term
   double max_deceleration = 7.0;          ///< d_max [m/s²] > 0: its hardest braking (spec §3's default)
   double speed_gain = 1.0;                ///< k_v [1/s] > 0: how fast it takes up its script again
+  /// true: it follows whatever road user is ahead; false: only those that do not keep to a script
+  /// (planning vehicles, and scripted vehicles that lag behind theirs), for scripts whose
+  /// interactions with each other are already in them, as a recording's are (a reactive replay).
+  bool follows_scripted = true;
 };
 
 /// The acceleration of a scripted vehicle at arc length s [m] and speed v [m/s] that lags behind
