@@ -510,9 +510,9 @@ int main(int argc, char** argv) {
                    "Keep the planned road user on the union of the file's lanelets within T_h (the road constraint of "
                    "spec §5)");
   replay->add_flag("--reactive", replay_options.reactive,
-                   "The other vehicles keep their distance to the road user ahead on their recorded paths (the "
-                   "driven one too), lagging behind their recordings where they must (car following, "
-                   "docs/commonroad.md)");
+                   "The other vehicles keep their distance to the driven road user, and to those it holds up, "
+                   "ahead on their recorded paths, lagging behind their recordings where they must (car "
+                   "following, docs/commonroad.md)");
   replay->add_option("--out", replay_options.out, "Output directory (default out/<file name>-replay)")
       ->type_name("DIR");
   replay->add_flag("--plots", replay_options.plots, "Then draw the run's figures into its output directory");

@@ -183,8 +183,7 @@ struct simulation::impl {
   /// A scripted vehicle with car following: whether it lags behind its script, and the
   /// acceleration it takes over the step (decided in `react` from the states at the step's start).
   struct lag {
-    const scripted_car_following* config = nullptr;  ///< null: it keeps to its script
-    double length = 0.0;                             ///< of its footprint [m]
+    const scripted_vehicle* vehicle = nullptr;  ///< with car following; null: it keeps to its script
     bool lagging = false;
     double acceleration = 0.0;  ///< [m/s²]
   };
@@ -222,7 +221,7 @@ struct simulation::impl {
     for (const planning_vehicle& v : sc.planning_vehicles) add(v.name, agent_kind::planning_vehicle, v.shape, nullptr);
     for (const scripted_vehicle& v : sc.scripted_vehicles) {
       add(v.name, agent_kind::scripted_vehicle, v.shape, &v.motion);
-      if (v.car_following) lags.back() = {&*v.car_following, v.shape.length};
+      if (v.car_following) lags.back().vehicle = &v;
     }
     for (const pedestrian& p : sc.pedestrians) add(p.name, agent_kind::pedestrian, mm::disc{p.radius}, &p.motion);
     for (const static_obstacle& o : sc.static_obstacles) {
@@ -393,13 +392,13 @@ struct simulation::impl {
     starting_to_lag.clear();
     for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
       lag& l = lags[id];
-      if (l.config == nullptr || states[id].status != agent_status::active) continue;
+      if (l.vehicle == nullptr || states[id].status != agent_status::active) continue;
       const agent_state& s = states[id];
-      const scripted_motion& m = *motions[id];
-      const scripted_car_following& k = *l.config;
+      const scripted_motion& m = l.vehicle->motion;
+      const scripted_car_following& k = *l.vehicle->car_following;
       double cap = inf;
-      if (const std::optional<leader> ahead =
-              leader_of(id, m.path, l.length, k.following, k.comfortable_deceleration, k.follows_scripted)) {
+      if (const std::optional<leader> ahead = leader_of(id, m.path, l.vehicle->shape.length, k.following,
+                                                        k.comfortable_deceleration, k.follows_scripted)) {
         cap = car_following_acceleration(s.speed, *ahead, k.following, k.max_acceleration, k.comfortable_deceleration);
       }
       // The script's acceleration over the step, not at its start: a replayed recording's speeds

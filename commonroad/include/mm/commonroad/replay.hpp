@@ -50,8 +50,9 @@ sim::scripted_car_following reactive_traffic();
 ///   its recorded steps); a rectangle becomes a scripted vehicle, a disc a pedestrian;
 /// - static obstacles keep their footprint (a disc as the 16-gon around it).
 /// The run lasts until the last recorded step, at the simulator's 100 Hz. The replayed road users do
-/// not react to the planned one unless `options.reactive` is set. Throws `measure_error` naming the road user that cannot be replayed
-/// (not a vehicle, a footprint that is neither a rectangle nor a disc) and why.
+/// not react to the planned one unless `options.reactive` is set. Throws `measure_error` naming the
+/// road user that cannot be replayed (not a vehicle, a footprint that is neither a rectangle nor a
+/// disc) and why.
 sim::scenario replay_scenario(const scenario& s, const replay_options& options);
 
 /// The name a road user gets in a replay: its type and id, e.g. `car-34`.

@@ -39,7 +39,7 @@ struct leader {
 double car_following_acceleration(double speed, const leader& ahead, const car_following_config& config,
                                   double max_acceleration, double comfortable_deceleration);
 
-/// Car following for a scripted vehicle, an addition to spec §8 (docs/simulator.md §5). The vehicle
+/// Car following for a scripted vehicle, an addition to spec §8 (docs/simulator.md §4). The vehicle
 /// keeps to its script while car following lets it; once `car_following_acceleration` behind the
 /// road user ahead on its path allows less than the script's acceleration, it lags behind the
 /// script, with `lagging_acceleration`, until it has caught up with it again (or reached the
