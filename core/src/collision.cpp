@@ -259,7 +259,7 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
       if (j != first && !visit(j)) return false;
     }
     if (t >= window.duration) return true;
-    if (step < resolution) return false;
+    if (step < resolution && step < window.duration - t) return false;
     t = std::min(window.duration, t + step);
   }
 }
@@ -284,7 +284,7 @@ bool verified_collision_free_reference(const ego_state& ego, const maneuver& u, 
       if (rate > 0.0) step = std::min(step, clearance / rate);
     }
     if (t >= window.duration) return true;
-    if (step < resolution) return false;
+    if (step < resolution && step < window.duration - t) return false;
     t = std::min(window.duration, t + step);
   }
 }

@@ -94,7 +94,7 @@ bool stays_on_drivable_area(const drivable_area& area, const ego_state& ego, con
     if (!(c > 0.0)) return false;
     if (t >= window.horizon) return true;
     const double step = rate > 0.0 ? c / rate : window.horizon;
-    if (step < resolution) return false;
+    if (step < resolution && step < window.horizon - t) return false;
     t = std::min(t + step, window.horizon);
   }
 }

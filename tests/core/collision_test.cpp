@@ -75,6 +75,26 @@ TEST(collision, verification_catches_a_contact_between_sample_times) {
   EXPECT_FALSE(verified_collision_free(ego_east(10.0), {0.0, 0.0}, car, taus, coarse));
 }
 
+TEST(collision, a_proof_whose_last_step_is_cut_short_by_the_window_s_end_is_not_a_contact) {
+  const ego_state stopped = ego_east(0.0);
+  // A walker passing along the stopped car's left side at 1.5 m/s, its clearance c constant while it
+  // is beside the car: each step of the proof is c / 1.5 s, two of them end 0.5 ms before T_c = 1 s,
+  // and the third is cut to those 0.5 ms, below the resolution of 1 ms.
+  const double step = (1.0 - 0.5e-3) / 2.0;
+  const double clearance = 1.5 * step;
+  const std::array<forecast_obstacle, 1> beside{
+      forecast_obstacle{{{{-1.0, 0.9 + 0.35 + clearance}, 0.0}, 1.5, 0.0}, disc{0.35}}};
+  const std::array<double, 1> taus{0.0};
+  const collision_window window{1.0, 1.0, 0.05, 0.0};
+  EXPECT_TRUE(verified_collision_free(stopped, {0.0, 0.0}, beside, taus, window, 1e-3));
+  EXPECT_TRUE(verified_collision_free_reference(stopped, {0.0, 0.0}, beside, taus, window, 1e-3));
+  // Within the resolution of the car, a step shorter than it still counts as not proven.
+  const std::array<forecast_obstacle, 1> grazing{
+      forecast_obstacle{{{{-1.0, 0.9 + 0.35 + 1e-3}, 0.0}, 1.5, 0.0}, disc{0.35}}};
+  EXPECT_FALSE(verified_collision_free(stopped, {0.0, 0.0}, grazing, taus, window, 1e-3));
+  EXPECT_FALSE(verified_collision_free_reference(stopped, {0.0, 0.0}, grazing, taus, window, 1e-3));
+}
+
 TEST(collision, tunneling_step_is_the_smallest_dimension_over_the_largest_relative_speed) {
   const ego_state ego = ego_east(10.0);
   const forecast_obstacle walker{{{{0.0, 0.0}, 0.0}, 1.5, 0.0}, disc{0.35}};

@@ -199,7 +199,7 @@ double refined_minimum(std::span<const double> times, std::size_t k, At&& at, do
 /// times. Conservative advancement: the signed distance changes no faster than L, the largest
 /// relative speed of any two footprint points, so from a clearance c > 0 at time t no contact is
 /// possible before t + c/L. Stepping so across the window proves it; a step shorter than
-/// `resolution` [s] (a clearance below L·resolution) counts as not proven.
+/// `resolution` [s] (a clearance below L·resolution) counts as not proven, unless it reaches T_c.
 ///
 /// Obstacles whose bounding discs are so far apart from the ego's that their clearance can neither
 /// be ≤ 0 nor shorten the step are not asked for their distance: equal to

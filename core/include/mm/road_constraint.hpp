@@ -49,7 +49,8 @@ clearance_set road_clearances_reference(const drivable_area& area, const ego_sta
 /// True when the footprint of the ego executing `u` stays clear of the boundary over the whole of
 /// [0, T_h], not only at sample times: conservative advancement, as `verified_collision_free` — the
 /// boundary clearance changes no faster than the largest point speed L, so from a clearance c > 0 at
-/// t none is lost before t + c/L; a step shorter than `resolution` [s] counts as not proven.
+/// t none is lost before t + c/L; a step shorter than `resolution` [s] counts as not proven, unless it
+/// reaches T_h.
 bool stays_on_drivable_area(const drivable_area& area, const ego_state& ego, const maneuver& u,
                             const collision_window& window, double resolution = 1e-3);
 
