@@ -421,7 +421,9 @@ void bind_planning(py::module_& m) {
   with_fields(rr)
       .def_readwrite("sampling", &reference_resolution::sampling, "dense (a, κ) grid per family")
       .def_readwrite("proof_resolution", &reference_resolution::proof_resolution,
-                     "time resolution of the continuous-time collision proof [s]");
+                     "time resolution of the continuous-time collision proof [s]")
+      .def_readwrite("one_dimensional_accelerations", &reference_resolution::one_dimensional_accelerations,
+                     "accelerations per family without steering (κ_max = 0): each family is a segment");
   m.def("plan_reference",
         [](const plan_input& input, const reference_resolution& resolution) {
           const plan_input own = input;

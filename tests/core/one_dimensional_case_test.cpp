@@ -6,6 +6,7 @@
 #include <numbers>
 
 #include "mm/planner.hpp"
+#include "mm/reference_planner.hpp"
 #include "random_scenes.hpp"
 
 namespace mm {
@@ -153,6 +154,20 @@ TEST(one_dimensional_case, neither_works_when_b_arrives_too_early_to_pass_and_to
   check(c, false, false);
   const plan_result r = plan(scene(c));
   EXPECT_EQ(r.mode, planning_mode::near_crash);
+}
+
+TEST(one_dimensional_case, the_reference_samples_a_family_without_steering_on_a_dense_segment) {
+  // A family without steering is a segment: the reference spends its density along it.
+  ego_limits steering;
+  ego_limits straight;
+  straight.steering = false;
+  const reference_resolution resolution;
+  EXPECT_EQ(reference_grid(steering, resolution).accelerations, 41u);
+  EXPECT_EQ(reference_grid(steering, resolution).curvatures, 121u);
+  EXPECT_EQ(reference_grid(straight, resolution).accelerations, 641u);
+  EXPECT_EQ(reference_grid(straight, resolution).curvatures, 1u);
+  const reference_resolution coarse{{11, 15}, 1e-4, 21};
+  EXPECT_EQ(reference_grid(straight, coarse).accelerations, 21u);
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 // reference's best forecast time leads by more than 0.02.
 //
 //   maneuvermap_accuracy [--scenes N] [--seed S] [--obstacles K] [--noise 0/1] [--fast AxC@DT,...]
-//                        [--ref-accelerations A] [--ref-curvatures C] [--ref-proof-resolution S]
+//                        [--ref-accelerations A] [--ref-curvatures C] [--ref-accelerations-1d A]
+//                        [--ref-proof-resolution S]
 //                        [--ref-engine fast|reference [--ref-time-step DT]] [--signs 1]
 // With --signs 1 it also compares, per fast setting, which samples collide under each forecast time
 // with the reference planner at the same grid (continuous time): the (sample, forecast time) pairs
@@ -123,7 +124,7 @@ int measure(const accuracy_options& o) {
     mm::plan_result r;
     if (fast_reference) {
       mm::plan_input fine = in;
-      fine.config.resolution = reference.sampling;
+      fine.config.resolution = mm::reference_grid(in.ego.limits, reference);
       fine.config.max_time_step = o.reference_time_step;
       r = mm::plan(fine);
     } else {
@@ -227,6 +228,8 @@ int main(int argc, char** argv) {
                  "Reference grid: accelerations per family (2 to 2001)", "A");
   cli::add_whole(app, "--ref-curvatures", o.reference.sampling.curvatures, 1, max_grid_nodes,
                  "Reference grid: curvatures (1 to 2001)", "C");
+  cli::add_whole(app, "--ref-accelerations-1d", o.reference.one_dimensional_accelerations, 2, max_grid_nodes,
+                 "Reference grid without steering: accelerations per family (2 to 2001)", "A");
   cli::add_real(app, "--ref-proof-resolution", o.reference.proof_resolution, cli::real_bound::positive, "s",
                 "Time resolution of the reference's continuous-time collision proof [s] (> 0)", "S");
   app.add_option("--ref-engine", o.engine,

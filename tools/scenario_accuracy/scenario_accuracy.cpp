@@ -8,7 +8,7 @@
 //
 //   maneuvermap_scenario_accuracy SCENARIO [--agent NAME] [--set NAME=VALUE]... [--every K]
 //       [--from T] [--until T] [--jobs J] [--ref-accelerations A] [--ref-curvatures C]
-//       [--ref-proof-resolution S] [--bound B] [--check] [--csv FILE]
+//       [--ref-accelerations-1d A] [--ref-proof-resolution S] [--bound B] [--check] [--csv FILE]
 //
 // Where the reference's exhaustive forecast-time search would be too large (many turning
 // neighbours, S6), the plan is compared by its map columns alone, both planners under the constant
@@ -246,10 +246,10 @@ int measure(const options& o) {
   std::sort(worst.begin(), worst.end());
   const auto count = static_cast<double>(std::max<std::size_t>(plans.size(), 1));
   std::printf("%s: %zu plans%s%s (every %zu), %zu compared, %zu with a relevant obstacle, %zu with several; "
-              "reference %zux%zu, proof %g s\n",
+              "reference %zux%zu (%zux1 without steering), proof %g s\n",
               o.scenario.c_str(), plans.size(), o.agent.empty() ? "" : " of ", o.agent.c_str(), o.every, compared,
               interacting, several, o.reference.sampling.accelerations, o.reference.sampling.curvatures,
-              o.reference.proof_resolution);
+              o.reference.one_dimensional_accelerations, o.reference.proof_resolution);
   if (largest != nullptr) {
     std::printf("map: max |dMI| %.4f (%s at %.2f s, tau %.3f s, %s); over the plans with a relevant obstacle: "
                 "median %.4f, p99 %.4f; plans over %g: %zu\n",
@@ -309,6 +309,8 @@ int main(int argc, char** argv) {
                  "Reference grid: accelerations per family (2 to 2001)", "A");
   cli::add_whole(app, "--ref-curvatures", o.reference.sampling.curvatures, 1, 2001,
                  "Reference grid: curvatures (1 to 2001)", "C");
+  cli::add_whole(app, "--ref-accelerations-1d", o.reference.one_dimensional_accelerations, 2, 2001,
+                 "Reference grid without steering (the one-dimensional case): accelerations per family (2 to 2001)", "A");
   cli::add_real(app, "--ref-proof-resolution", o.reference.proof_resolution, cli::real_bound::positive, "s",
                 "Time resolution of the reference's continuous-time collision proof [s] (> 0)", "S");
   cli::add_real(app, "--bound", o.bound, cli::real_bound::positive, "",

@@ -801,6 +801,8 @@ class reference_resolution:
     """dense (a, κ) grid per family"""
     proof_resolution: float
     """time resolution of the continuous-time collision proof [s]"""
+    one_dimensional_accelerations: int
+    """accelerations per family without steering (κ_max = 0): each family is a segment"""
 
 class sample_snapshot:
     """The sampled maneuvers of a step and their safety (plan_input.config.record_samples)."""
