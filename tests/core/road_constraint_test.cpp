@@ -214,6 +214,30 @@ TEST(road_constraint, a_maneuver_proven_to_stay_on_the_road_stays_on_it_at_every
   EXPECT_GT(not_proven, 0U);
 }
 
+TEST(road_constraint, a_proof_whose_last_step_is_cut_short_by_the_horizon_is_not_a_departure) {
+  // The ego drives straight at 10 m/s towards the road's edge at an angle whose sine is 0.7: its
+  // front left corner closes on the edge at 7 m/s, the largest point speed is 10 m/s, so each step
+  // of the proof covers 0.7 of what is left to the contact, due 0.5 ms after T_h = 1 s. The steps
+  // before T_h shrink to 1.7 ms; the last, 0.51 ms, reaches T_h and is below the resolution of 1 ms.
+  ego_state ego;
+  ego.speed = 10.0;
+  ego.pose = {{0.0, 0.0}, std::asin(0.7)};
+  const double corner = 2.25 * 0.7 + 0.9 * std::sqrt(1.0 - 0.49);
+  const auto road_to = [&](double contact_time) {
+    const double edge = corner + 7.0 * contact_time;
+    return drivable_area(std::vector<std::vector<vec2>>{{{-100.0, -50.0}, {100.0, -50.0}, {100.0, edge}, {-100.0, edge}}});
+  };
+  const collision_window window{1.0, 3.0, 0.05, 0.0};
+  const drivable_area clear = road_to(1.0005);
+  ASSERT_TRUE(starts_on_drivable_area(clear, ego));
+  EXPECT_TRUE(stays_on_drivable_area(clear, ego, {0.0, 0.0}, window, 1e-3));
+  EXPECT_TRUE(stays_on_drivable_area_reference(clear, ego, {0.0, 0.0}, window, 1e-4));
+  // The contact 0.5 ms before T_h instead: off the road.
+  const drivable_area off = road_to(0.9995);
+  EXPECT_FALSE(stays_on_drivable_area(off, ego, {0.0, 0.0}, window, 1e-3));
+  EXPECT_FALSE(stays_on_drivable_area_reference(off, ego, {0.0, 0.0}, window, 1e-4));
+}
+
 TEST(road_constraint, a_road_wider_than_every_maneuver_s_reach_changes_no_index_and_no_command) {
   std::mt19937_64 rng(testing::property_seed() + 73);
   const std::size_t count = testing::property_count(20);
