@@ -166,7 +166,8 @@ int measure(const accuracy_options& o) {
         mm::plan_input recorded = in;
         recorded.config.record_samples = true;
         const mm::plan_result fs = mm::plan(recorded);
-        const mm::plan_result rs = mm::plan_reference(recorded, {setting.resolution, reference.proof_resolution});
+        const mm::plan_result rs = mm::plan_reference(
+            recorded, {setting.resolution, reference.proof_resolution, setting.resolution.accelerations});
         if (!fs.ok() || !rs.ok()) {
           std::fprintf(stderr, "scene %zu, signs at %s: %s\n", s, setting.label().c_str(), (fs.ok() ? rs : fs).error.c_str());
           return 1;

@@ -63,7 +63,8 @@ def main() -> int:
         worst = brake if family == "brake" else accelerate
         k = int(worst.argmax())
         errors.append(float(worst[k]))
-        print(f"{path},{agent},{step},{sum(1 for o in fast.obstacles if o.relevant)},{worst[k]:.4f},{fast.forecast_times[k]:.3f},{family}", flush=True)
+        relevant = sum(1 for o in fast.obstacles if o.relevant)
+        print(f"{path},{agent},{step},{relevant},{worst[k]:.4f},{fast.forecast_times[k]:.3f},{family}", flush=True)
 
     values = np.array(errors)
     print(f"# {len(values)} steps (seed {args.seed}): largest |dMI| max {values.max():.4f}, "
