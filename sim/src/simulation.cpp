@@ -257,7 +257,10 @@ struct simulation::impl {
     advance_agents(0.0, true);
     detect_crashes();
     measure();
-    if (!ended()) decide();
+    if (!ended()) {
+      decide();
+      react();
+    }
   }
 
   void add(const std::string& name, agent_kind kind, mm::footprint shape, const scripted_motion* motion) {
@@ -344,29 +347,49 @@ struct simulation::impl {
     std::fill(v.seen.begin(), v.seen.end(), 0);
   }
 
+  /// The script's mean acceleration over the coming step, (v(t + Δt) − v(t))/Δt [m/s²], where
+  /// `now_sample` is its state at t: not the slope at t, because a replayed recording's speeds jump
+  /// at its steps (within 10⁻⁷ s), and the slope there is no acceleration to take or to report.
+  double acceleration_over_step(const scripted_motion& m, const scripted_sample& now_sample) const {
+    const double next = static_cast<double>(step + 1) * sc.time_step;
+    return (scripted_state(m, next).speed - now_sample.speed) / sc.time_step;
+  }
+
+  struct lagged_move {
+    double speed;       ///< [m/s]
+    double arc_length;  ///< [m]
+  };
+
+  /// Speed and arc length of a lagging vehicle after a step of `dt` under its lag acceleration,
+  /// stopping at rest; none once that would take it to its script at the step's end (`script_then`)
+  /// or to its path's end, where it keeps to its script again.
+  std::optional<lagged_move> lagged_step(agent_id id, const scripted_sample& script_then, double dt) const {
+    const agent_state& s = states[id];
+    const double a = lags[id].acceleration;
+    double speed = s.speed + a * dt;
+    double travelled = 0.5 * (s.speed + speed) * dt;
+    if (speed < 0.0) {
+      travelled = s.speed * s.speed / (-2.0 * a);
+      speed = 0.0;
+    }
+    const double arc_length = s.arc_length + travelled;
+    if (arc_length < script_then.arc_length && arc_length < motions[id]->path.length()) return lagged_move{speed, arc_length};
+    return std::nullopt;
+  }
+
   void advance_scripted(agent_id id, double dt) {
     agent_state& s = states[id];
     if (s.status == agent_status::crashed || s.status == agent_status::finished) return;
     const scripted_motion& m = *motions[id];
     const scripted_sample sample = scripted_state(m, now());
     if (lags[id].lagging) {
-      // s and v under the step's constant acceleration, stopping at rest.
-      const double a = lags[id].acceleration;
-      double speed = s.speed + a * dt;
-      double travelled = 0.5 * (s.speed + speed) * dt;
-      if (speed < 0.0) {
-        travelled = s.speed * s.speed / (-2.0 * a);
-        speed = 0.0;
-      }
-      const double arc_length = s.arc_length + travelled;
-      if (arc_length < sample.arc_length && arc_length < m.path.length()) {
-        const path_point at = m.path.at(arc_length);
+      if (const std::optional<lagged_move> move = lagged_step(id, sample, dt)) {
+        const path_point at = m.path.at(move->arc_length);
         s.status = agent_status::active;
         s.pose = {at.position, at.heading};
-        s.acceleration = (speed - s.speed) / dt;
-        s.speed = speed;
+        s.speed = move->speed;
         s.curvature = at.curvature;
-        s.arc_length = arc_length;
+        s.arc_length = move->arc_length;
         s.lateral_offset = 0.0;
         return;
       }
@@ -376,7 +399,7 @@ struct simulation::impl {
     s.status = status_of(sample.phase, m.before_start);
     s.pose = {where.position, where.heading};
     s.speed = sample.speed;
-    s.acceleration = sample.acceleration;
+    s.acceleration = s.status == agent_status::active ? acceleration_over_step(m, sample) : 0.0;
     s.curvature = s.status == agent_status::active ? where.curvature : 0.0;
     s.arc_length = sample.arc_length;
     s.lateral_offset = 0.0;
@@ -385,7 +408,8 @@ struct simulation::impl {
   /// Car following of the scripted vehicles that have it, from the states at the step's start (so
   /// that the order in which agents move does not matter): a vehicle on its script starts to lag
   /// when car following allows less than the script's acceleration over the step; a lagging one
-  /// takes `lagging_acceleration`.
+  /// takes `lagging_acceleration`, which its state reports. Runs at the end of a step, after the
+  /// decisions, on the states the next step starts from.
   void react() {
     // Who lags is read by the others' leader searches (`follows_scripted`): the vehicles that start
     // to lag this step are marked after every decision.
@@ -401,11 +425,8 @@ struct simulation::impl {
                                                         k.comfortable_deceleration, k.follows_scripted)) {
         cap = car_following_acceleration(s.speed, *ahead, k.following, k.max_acceleration, k.comfortable_deceleration);
       }
-      // The script's acceleration over the step, not at its start: a replayed recording's speeds
-      // jump at its steps (within 10⁻⁷ s), and the slope there is no acceleration to take.
       scripted_sample script = scripted_state(m, now());
-      script.acceleration =
-          (scripted_state(m, static_cast<double>(step + 1) * sc.time_step).speed - script.speed) / sc.time_step;
+      script.acceleration = acceleration_over_step(m, script);
       if (!l.lagging) {
         if (!(cap < script.acceleration)) continue;
         starting_to_lag.push_back(id);
@@ -413,6 +434,16 @@ struct simulation::impl {
       l.acceleration = lagging_acceleration(s.arc_length, s.speed, script, cap, k);
     }
     for (const agent_id id : starting_to_lag) lags[id].lagging = true;
+    // What a lagging vehicle's state reports: its speed change over the coming step, on its lag or
+    // back on its script.
+    const double next = static_cast<double>(step + 1) * sc.time_step;
+    for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
+      agent_state& s = states[id];
+      if (!lags[id].lagging || s.status != agent_status::active) continue;
+      const scripted_sample script_then = scripted_state(*motions[id], next);
+      const std::optional<lagged_move> move = lagged_step(id, script_then, sc.time_step);
+      s.acceleration = ((move ? move->speed : script_then.speed) - s.speed) / sc.time_step;
+    }
   }
 
   // --- 2. crashes ------------------------------------------------------------------------------
@@ -824,7 +855,6 @@ simulation& simulation::operator=(simulation&&) noexcept = default;
 void simulation::step() {
   impl& m = *impl_;
   if (m.ended()) return;
-  m.react();
   ++m.step;
   m.advance_agents(m.sc.time_step, false);
   m.detect_crashes();
@@ -834,6 +864,7 @@ void simulation::step() {
     return;
   }
   m.decide();
+  m.react();
 }
 
 bool simulation::ended() const { return impl_->ended(); }

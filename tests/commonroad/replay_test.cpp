@@ -7,6 +7,7 @@
 #include <numbers>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "mm/commonroad/measure.hpp"
 #include "mm/commonroad/replay.hpp"
@@ -103,6 +104,46 @@ TEST(replay, every_replayed_road_user_is_where_it_was_recorded_at_every_recorded
     }
   });
   EXPECT_EQ(checked, 26U + 41U + 16U);
+}
+
+/// Runs `sc` and checks at every step that each present road user of `names` reaches the speed its
+/// state's acceleration gives over the step: v(t + Δt) = v(t) + a(t)·Δt. Returns the number of steps
+/// on which a speed changed.
+std::size_t check_speed_changes(const mm::sim::scenario& sc, const std::vector<std::string>& names) {
+  mm::sim::simulation sim(sc);
+  std::vector<mm::sim::agent_state> before(sim.states().begin(), sim.states().end());
+  std::size_t changing = 0;
+  while (!sim.ended()) {
+    sim.step();
+    for (const std::string& name : names) {
+      const mm::sim::agent_id id = *sim.find(name);
+      const mm::sim::agent_state& was = before[id];
+      const mm::sim::agent_state& is = sim.state(id);
+      if (!was.present() || !is.present()) continue;
+      EXPECT_NEAR(is.speed, was.speed + was.acceleration * sc.time_step, 1e-9) << name << " at " << sim.time() - sc.time_step;
+      if (is.speed != was.speed) ++changing;
+    }
+    before.assign(sim.states().begin(), sim.states().end());
+  }
+  return changing;
+}
+
+TEST(replay, a_replayed_road_user_s_acceleration_is_its_speed_change_over_the_coming_step_also_when_it_reacts) {
+  // The replay holds each recorded step's mean speed, so the speed jumps at the recorded steps (within
+  // 10⁻⁷ s); the slope of the jump is not what the road user applies over a step of 0.01 s.
+  replay_options options;
+  options.agent = 1;
+  options.avoidance = false;
+  EXPECT_GT(check_speed_changes(replay_scenario(traffic(), options), {"car-2", "pedestrian-3"}), 10U);
+  // Car 3 brakes behind car 1, which stops: it lags behind its recording.
+  scenario s;
+  s.version = "2020a";
+  s.time_step = 0.1;
+  s.obstacles.push_back(recorded(1, "car", {{0, 0}, 0.0}, constant(10.0, 51), 0.0, 0));
+  s.obstacles.push_back(recorded(3, "car", {{-20, 0}, 0.0}, constant(10.0, 51), 0.0, 0));
+  options.desired_speed = 0.0;
+  options.reactive = reactive_traffic();
+  EXPECT_GT(check_speed_changes(replay_scenario(s, options), {"car-3"}), 100U);
 }
 
 TEST(replay, the_driven_road_user_starts_as_recorded_and_without_avoidance_keeps_to_its_recorded_path) {
