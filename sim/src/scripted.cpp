@@ -7,14 +7,7 @@
 namespace mm::sim {
 namespace {
 
-/// A piece of the profile on which the speed is linear: from clock `begin` for `duration`
-/// (∞ for the last), starting at `speed` with slope `acceleration`.
-struct piece {
-  double begin;
-  double duration;
-  double speed;
-  double acceleration;
-};
+using piece = tabulated_profile::piece;
 
 /// The pieces of the profile in order: constant before the first knot, linear between knots,
 /// constant after the last.
@@ -89,16 +82,20 @@ std::string_view to_string(before_start_behaviour behaviour) {
   return "unknown";
 }
 
-scripted_sample scripted_state(const scripted_motion& motion, double time) {
+namespace {
+
+/// The state of `motion` at `time`, its profile evaluated by `profile` (speed, acceleration and
+/// distance at a clock) and `reached()` the clock at which it reaches its stop.
+template <class Profile, class Reached>
+scripted_sample state_of(const scripted_motion& motion, double time, const Profile& profile, const Reached& reached) {
   scripted_sample sample;
   sample.arc_length = motion.start_arc_length;
   if (time < motion.start_time) return sample;
   double clock = time - motion.start_time;
   if (motion.stop) {
-    const std::optional<double> reached =
-        profile_time_to_cover(motion.speed, motion.stop->arc_length - motion.start_arc_length);
-    if (reached && clock >= *reached) {
-      if (!motion.stop->duration || clock < *reached + *motion.stop->duration) {
+    const std::optional<double> at = reached();
+    if (at && clock >= *at) {
+      if (!motion.stop->duration || clock < *at + *motion.stop->duration) {
         sample.phase = motion_phase::stopped;
         sample.arc_length = motion.stop->arc_length;
         return sample;
@@ -106,11 +103,74 @@ scripted_sample scripted_state(const scripted_motion& motion, double time) {
       clock -= *motion.stop->duration;
     }
   }
-  sample.arc_length = motion.start_arc_length + profile_distance(motion.speed, clock);
-  sample.speed = profile_speed(motion.speed, clock);
-  sample.acceleration = profile_acceleration(motion.speed, clock);
+  sample.arc_length = motion.start_arc_length + profile.distance(clock);
+  sample.speed = profile.speed(clock);
+  sample.acceleration = profile.acceleration(clock);
   sample.phase = sample.arc_length >= motion.path.length() ? motion_phase::finished : motion_phase::moving;
   return sample;
+}
+
+/// The reference's evaluation: the free functions, every call from the knots.
+struct walked_profile {
+  const speed_profile& profile;
+  double speed(double clock) const { return profile_speed(profile, clock); }
+  double acceleration(double clock) const { return profile_acceleration(profile, clock); }
+  double distance(double clock) const { return profile_distance(profile, clock); }
+};
+
+std::optional<double> stop_reached(const scripted_motion& motion) {
+  return profile_time_to_cover(motion.speed, motion.stop->arc_length - motion.start_arc_length);
+}
+
+}  // namespace
+
+scripted_sample scripted_state(const scripted_motion& motion, double time) {
+  return state_of(motion, time, walked_profile{motion.speed}, [&] { return stop_reached(motion); });
+}
+
+tabulated_profile::tabulated_profile(const speed_profile& profile) : pieces_(pieces(profile)) {
+  double end = -std::numeric_limits<double>::infinity();
+  double covered = 0.0;
+  for (const piece& p : pieces_) {
+    end = std::max(end, p.begin + p.duration);
+    end_so_far_.push_back(end);
+    covered_.push_back(covered);
+    if (std::isfinite(p.duration)) covered += p.speed * p.duration + 0.5 * p.acceleration * p.duration * p.duration;
+  }
+}
+
+/// `piece_at`'s piece: the first with clock < begin + duration, which is the first whose running
+/// maximum of those ends exceeds the clock; the last when there is none.
+std::size_t tabulated_profile::index_at(double clock) const {
+  const auto found = std::upper_bound(end_so_far_.begin(), end_so_far_.end(), clock);
+  return found == end_so_far_.end() ? pieces_.size() - 1 : static_cast<std::size_t>(found - end_so_far_.begin());
+}
+
+double tabulated_profile::speed(double clock) const {
+  const piece& p = pieces_[index_at(std::max(clock, 0.0))];
+  return std::max(0.0, p.speed + p.acceleration * (std::max(clock, 0.0) - p.begin));
+}
+
+double tabulated_profile::acceleration(double clock) const { return pieces_[index_at(std::max(clock, 0.0))].acceleration; }
+
+/// `profile_distance` adds, in order, every piece that begins before the clock: the pieces before
+/// the last of them whole (a later one begins before the clock, so clock − begin ≥ duration), the
+/// last up to the clock.
+double tabulated_profile::distance(double clock) const {
+  const auto after = std::upper_bound(pieces_.begin(), pieces_.end(), clock,
+                                      [](double c, const piece& p) { return c <= p.begin; });
+  if (after == pieces_.begin()) return 0.0;
+  const std::size_t last = static_cast<std::size_t>(after - pieces_.begin()) - 1;
+  const piece& p = pieces_[last];
+  const double x = std::min(clock - p.begin, p.duration);
+  return covered_[last] + (p.speed * x + 0.5 * p.acceleration * x * x);
+}
+
+prepared_script::prepared_script(const scripted_motion& motion)
+    : motion_(&motion), speed_(motion.speed), stop_reached_(motion.stop ? stop_reached(motion) : std::nullopt) {}
+
+scripted_sample prepared_script::state(double time) const {
+  return state_of(*motion_, time, speed_, [this] { return stop_reached_; });
 }
 
 std::optional<double> time_to_reach(const scripted_motion& motion, double arc_length) {

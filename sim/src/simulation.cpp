@@ -116,6 +116,7 @@ struct simulation::impl {
   /// A planning vehicle's runtime: its command, plans, tracks and metrics.
   struct vehicle {
     const planning_vehicle* spec = nullptr;
+    std::optional<tabulated_profile> desired_speed;  ///< `spec->desired_speed_profile`, tabulated
     maneuver command;
     /// Mode and family behind `command` (nominal for the follower's own u_nom).
     mm::planning_mode command_mode = mm::planning_mode::nominal;
@@ -179,7 +180,7 @@ struct simulation::impl {
   std::vector<agent_info> infos;
   std::vector<agent_state> states;
   std::vector<double> radii;                       ///< bounding radius of each footprint [m]
-  std::vector<const scripted_motion*> motions;     ///< per id; null for planning vehicles and statics
+  std::vector<std::optional<prepared_script>> scripts;  ///< per id; none for planning vehicles and statics
   /// A scripted vehicle with car following: whether it lags behind its script, and the
   /// acceleration it takes over the step (decided in `react` from the states at the step's start).
   struct lag {
@@ -233,6 +234,7 @@ struct simulation::impl {
     for (std::size_t i = 0; i < vehicles.size(); ++i) {
       vehicle& v = vehicles[i];
       v.spec = &sc.planning_vehicles[i];
+      if (v.spec->desired_speed_profile) v.desired_speed.emplace(*v.spec->desired_speed_profile);
       const double window = v.spec->planner.history_window;
       const auto capacity = static_cast<std::size_t>(std::floor(window / sc.time_step + 1e-9)) + 2;
       v.track_capacity = capacity;
@@ -267,7 +269,8 @@ struct simulation::impl {
     radii.push_back(mm::bounding_radius(shape));
     infos.push_back({name, kind, std::move(shape)});
     states.emplace_back();
-    motions.push_back(motion);
+    scripts.emplace_back();
+    if (motion != nullptr) scripts.back().emplace(*motion);
     lags.emplace_back();
   }
 
@@ -293,7 +296,7 @@ struct simulation::impl {
   void advance_agents(double dt, bool initial) {
     for (vehicle& v : vehicles) advance_vehicle(v, dt, initial);
     for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
-      if (motions[id] != nullptr) advance_scripted(id, dt);
+      if (scripts[id]) advance_scripted(id, dt);
     }
   }
 
@@ -350,9 +353,9 @@ struct simulation::impl {
   /// The script's mean acceleration over the coming step, (v(t + Δt) − v(t))/Δt [m/s²], where
   /// `now_sample` is its state at t: not the slope at t, because a replayed recording's speeds jump
   /// at its steps (within 10⁻⁷ s), and the slope there is no acceleration to take or to report.
-  double acceleration_over_step(const scripted_motion& m, const scripted_sample& now_sample) const {
+  double acceleration_over_step(const prepared_script& script, const scripted_sample& now_sample) const {
     const double next = static_cast<double>(step + 1) * sc.time_step;
-    return (scripted_state(m, next).speed - now_sample.speed) / sc.time_step;
+    return (script.state(next).speed - now_sample.speed) / sc.time_step;
   }
 
   struct lagged_move {
@@ -373,15 +376,16 @@ struct simulation::impl {
       speed = 0.0;
     }
     const double arc_length = s.arc_length + travelled;
-    if (arc_length < script_then.arc_length && arc_length < motions[id]->path.length()) return lagged_move{speed, arc_length};
+    if (arc_length < script_then.arc_length && arc_length < scripts[id]->motion().path.length()) return lagged_move{speed, arc_length};
     return std::nullopt;
   }
 
   void advance_scripted(agent_id id, double dt) {
     agent_state& s = states[id];
     if (s.status == agent_status::crashed || s.status == agent_status::finished) return;
-    const scripted_motion& m = *motions[id];
-    const scripted_sample sample = scripted_state(m, now());
+    const prepared_script& script = *scripts[id];
+    const scripted_motion& m = script.motion();
+    const scripted_sample sample = script.state(now());
     if (lags[id].lagging) {
       if (const std::optional<lagged_move> move = lagged_step(id, sample, dt)) {
         const path_point at = m.path.at(move->arc_length);
@@ -399,7 +403,7 @@ struct simulation::impl {
     s.status = status_of(sample.phase, m.before_start);
     s.pose = {where.position, where.heading};
     s.speed = sample.speed;
-    s.acceleration = s.status == agent_status::active ? acceleration_over_step(m, sample) : 0.0;
+    s.acceleration = s.status == agent_status::active ? acceleration_over_step(script, sample) : 0.0;
     s.curvature = s.status == agent_status::active ? where.curvature : 0.0;
     s.arc_length = sample.arc_length;
     s.lateral_offset = 0.0;
@@ -425,8 +429,8 @@ struct simulation::impl {
                                                         k.comfortable_deceleration, k.follows_scripted)) {
         cap = car_following_acceleration(s.speed, *ahead, k.following, k.max_acceleration, k.comfortable_deceleration);
       }
-      scripted_sample script = scripted_state(m, now());
-      script.acceleration = acceleration_over_step(m, script);
+      scripted_sample script = scripts[id]->state(now());
+      script.acceleration = acceleration_over_step(*scripts[id], script);
       if (!l.lagging) {
         if (!(cap < script.acceleration)) continue;
         starting_to_lag.push_back(id);
@@ -440,7 +444,7 @@ struct simulation::impl {
     for (agent_id id = vehicles.size(); id < infos.size(); ++id) {
       agent_state& s = states[id];
       if (!lags[id].lagging || s.status != agent_status::active) continue;
-      const scripted_sample script_then = scripted_state(*motions[id], next);
+      const scripted_sample script_then = scripts[id]->state(next);
       const std::optional<lagged_move> move = lagged_step(id, script_then, sc.time_step);
       s.acceleration = ((move ? move->speed : script_then.speed) - s.speed) / sc.time_step;
     }
@@ -643,9 +647,7 @@ struct simulation::impl {
   follower_command nominal_of(const vehicle& v) const {
     const agent_state& s = states[id_of(v)];
     const planning_vehicle& spec = *v.spec;
-    const double desired = spec.desired_speed_profile
-                               ? profile_speed(*spec.desired_speed_profile, now() - spec.start_time)
-                               : spec.desired_speed;
+    const double desired = v.desired_speed ? v.desired_speed->speed(now() - spec.start_time) : spec.desired_speed;
     follower_command command = follow_path(spec.path, s.arc_length, s.pose, s.speed, desired, spec.follower, spec.limits);
     if (spec.follower.car_following) {
       if (const std::optional<leader> ahead = leader_of(id_of(v), spec.path, spec.shape.length,
@@ -679,7 +681,7 @@ struct simulation::impl {
     for (agent_id j = 0; j < states.size(); ++j) {
       const agent_state& other = states[j];
       if (j == self || !other.present() || infos[j].kind == agent_kind::static_obstacle) continue;
-      if (!scripted_too && motions[j] != nullptr && !lags[j].lagging) continue;  // on its script
+      if (!scripted_too && scripts[j] && !lags[j].lagging) continue;  // on its script
       const double reach = preview + front + radii[j];
       if (squared_norm(other.pose.position - me.pose.position) > reach * reach) continue;
       const path_projection p = route.project(other.pose.position, me.arc_length + 0.5 * preview, 0.5 * preview);

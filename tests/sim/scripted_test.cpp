@@ -3,7 +3,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <random>
+#include <sstream>
+#include <string>
 #include <vector>
+
+#include "property.hpp"
 
 namespace {
 
@@ -74,6 +80,91 @@ TEST(sim_scripted_motion, a_pedestrian_stops_at_the_kerb_for_its_duration_then_w
   EXPECT_DOUBLE_EQ(scripted_state(walk, 1000.0).arc_length, 7.0);
   EXPECT_FALSE(time_to_reach(walk, 7.5).has_value());
   EXPECT_NEAR(*time_to_reach(walk, 7.0), 5.0, 1e-12);
+}
+
+/// A random speed profile of 1 to 12 knots: the first at 0 or later, gaps of 10⁻⁷ s (a replayed
+/// recording's speed steps) to 2 s, speeds of 0 to 20 m/s, some repeated.
+speed_profile random_profile(std::mt19937_64& rng) {
+  std::uniform_int_distribution<int> knots(1, 12);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  speed_profile profile;
+  double time = unit(rng) < 0.5 ? 0.0 : 3.0 * unit(rng);
+  double speed = 20.0 * unit(rng);
+  for (int i = knots(rng); i > 0; --i) {
+    profile.knots.push_back({time, speed});
+    time += unit(rng) < 0.3 ? 1e-7 : 0.01 + 2.0 * unit(rng);
+    if (unit(rng) < 0.7) speed = 20.0 * unit(rng);
+  }
+  return profile;
+}
+
+std::string describe(const speed_profile& profile) {
+  std::ostringstream text;
+  text.precision(17);
+  for (const speed_knot& k : profile.knots) text << "(" << k.time << ", " << k.speed << ") ";
+  return text.str();
+}
+
+/// Clocks to evaluate `profile` at: random ones before, over and after it, and every knot's time
+/// with its neighbouring doubles.
+std::vector<double> clocks_of(const speed_profile& profile, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> anywhere(-1.0, profile.knots.back().time + 2.0);
+  std::vector<double> clocks;
+  for (int i = 0; i < 20; ++i) clocks.push_back(anywhere(rng));
+  for (const speed_knot& k : profile.knots) {
+    clocks.insert(clocks.end(), {k.time, std::nextafter(k.time, -1.0), std::nextafter(k.time, 1e9), k.time - 5e-8});
+  }
+  return clocks;
+}
+
+bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+TEST(sim_tabulated_profile, gives_the_reference_s_speed_acceleration_and_distance_bit_for_bit) {
+  std::mt19937_64 rng(mm::testing::property_seed());
+  const std::size_t count = mm::testing::property_count(2000);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const speed_profile profile = random_profile(rng);
+    const tabulated_profile table(profile);
+    for (const double clock : clocks_of(profile, rng)) {
+      ASSERT_TRUE(same_bits(table.speed(clock), profile_speed(profile, clock)))
+          << "speed at " << clock << " of " << describe(profile) << "(seed " << mm::testing::property_seed() << ")";
+      ASSERT_TRUE(same_bits(table.acceleration(clock), profile_acceleration(profile, clock)))
+          << "acceleration at " << clock << " of " << describe(profile) << "(seed " << mm::testing::property_seed() << ")";
+      ASSERT_TRUE(same_bits(table.distance(clock), profile_distance(profile, clock)))
+          << "distance at " << clock << " of " << describe(profile) << "(seed " << mm::testing::property_seed() << ")";
+    }
+  }
+}
+
+TEST(sim_prepared_script, gives_scripted_state_bit_for_bit_with_and_without_a_stop) {
+  std::mt19937_64 rng(mm::testing::property_seed() + 1);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::size_t count = mm::testing::property_count(1000);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    scripted_motion m;
+    m.path = straight_road(5.0 + 100.0 * unit(rng));
+    m.start_time = unit(rng) < 0.5 ? 0.0 : 2.0 * unit(rng);
+    m.start_arc_length = 0.5 * m.path.length() * unit(rng);
+    m.before_start = unit(rng) < 0.5 ? before_start_behaviour::absent : before_start_behaviour::wait;
+    m.speed = random_profile(rng);
+    if (unit(rng) < 0.6) {
+      const double at = m.start_arc_length + (m.path.length() - m.start_arc_length) * unit(rng);
+      m.stop = stop_rule{at, unit(rng) < 0.3 ? std::nullopt : std::optional(0.1 + 3.0 * unit(rng))};
+    }
+    const prepared_script script(m);
+    std::vector<double> times;
+    for (const double clock : clocks_of(m.speed, rng)) times.push_back(m.start_time + clock);
+    for (int i = 0; i < 20; ++i) times.push_back(30.0 * unit(rng));
+    for (const double time : times) {
+      const scripted_sample fast = script.state(time);
+      const scripted_sample reference = scripted_state(m, time);
+      ASSERT_TRUE(fast.phase == reference.phase && same_bits(fast.arc_length, reference.arc_length) &&
+                  same_bits(fast.speed, reference.speed) && same_bits(fast.acceleration, reference.acceleration))
+          << "at " << time << ": start " << m.start_time << " s at " << m.start_arc_length << " m, stop "
+          << (m.stop ? m.stop->arc_length : -1.0) << " m, profile " << describe(m.speed) << "(seed "
+          << mm::testing::property_seed() << ")";
+    }
+  }
 }
 
 }  // namespace

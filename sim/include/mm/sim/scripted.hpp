@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string_view>
@@ -82,6 +83,54 @@ struct scripted_sample {
 
 /// The exact (closed-form) state of `motion` at absolute time `time` [s].
 scripted_sample scripted_state(const scripted_motion& motion, double time);
+
+/// A speed profile prepared for evaluation many times: its pieces, their ends and the distance
+/// covered before each are computed once, so that speed, acceleration and distance at a clock take
+/// O(log K) for K knots and allocate nothing, where `profile_speed`, `profile_acceleration` and
+/// `profile_distance` (the reference) build the pieces and walk them, O(K). The values are theirs,
+/// bit for bit: the same pieces, the same sums in the same order (tests/sim/scripted_test.cpp). A
+/// replayed recording has two knots per recorded step, so the reference makes a replay's cost grow
+/// with the square of its length.
+class tabulated_profile {
+ public:
+  explicit tabulated_profile(const speed_profile& profile);
+
+  double speed(double clock) const;         ///< = profile_speed(profile, clock) [m/s]
+  double acceleration(double clock) const;  ///< = profile_acceleration(profile, clock) [m/s²]
+  double distance(double clock) const;      ///< = profile_distance(profile, clock) [m]
+
+  /// A piece of the profile on which the speed is linear: from clock `begin` for `duration` (∞
+  /// for the last), starting at `speed` with slope `acceleration`.
+  struct piece {
+    double begin;
+    double duration;
+    double speed;
+    double acceleration;
+  };
+
+ private:
+  std::size_t index_at(double clock) const;
+
+  std::vector<piece> pieces_;
+  std::vector<double> end_so_far_;   ///< max over pieces 0..i of begin + duration: sorted
+  std::vector<double> covered_;      ///< distance covered by the whole pieces 0..i−1 [m]
+};
+
+/// A scripted motion prepared for evaluation at every step of a run: `state(time)` gives
+/// `scripted_state(motion, time)`, bit for bit, in O(log K) for K knots of its speed profile (its
+/// profile tabulated, the time it reaches its stop computed once). Keeps a reference to `motion`.
+class prepared_script {
+ public:
+  explicit prepared_script(const scripted_motion& motion);
+
+  scripted_sample state(double time) const;
+  const scripted_motion& motion() const { return *motion_; }
+
+ private:
+  const scripted_motion* motion_;
+  tabulated_profile speed_;
+  std::optional<double> stop_reached_;  ///< the clock at which it reaches its stop
+};
 
 /// The absolute time [s] at which `motion` first reaches arc length `arc_length` [m]: use it to
 /// time a conflict. None if it never does (behind its start, beyond a permanent stop, or the
