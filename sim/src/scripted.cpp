@@ -151,7 +151,9 @@ double tabulated_profile::speed(double clock) const {
   return std::max(0.0, p.speed + p.acceleration * (std::max(clock, 0.0) - p.begin));
 }
 
-double tabulated_profile::acceleration(double clock) const { return pieces_[index_at(std::max(clock, 0.0))].acceleration; }
+double tabulated_profile::acceleration(double clock) const {
+  return pieces_[index_at(std::max(clock, 0.0))].acceleration;
+}
 
 /// `profile_distance` adds, in order, every piece that begins before the clock: the pieces before
 /// the last of them whole (a later one begins before the clock, so clock − begin ≥ duration), the

@@ -376,8 +376,8 @@ struct simulation::impl {
       speed = 0.0;
     }
     const double arc_length = s.arc_length + travelled;
-    if (arc_length < script_then.arc_length && arc_length < scripts[id]->motion().path.length()) return lagged_move{speed, arc_length};
-    return std::nullopt;
+    if (!(arc_length < script_then.arc_length && arc_length < scripts[id]->motion().path.length())) return std::nullopt;
+    return lagged_move{speed, arc_length};
   }
 
   void advance_scripted(agent_id id, double dt) {
