@@ -154,10 +154,9 @@ int list_command() {
 int validate_command(const scenario_options& o) {
   const sf::loaded_scenario loaded = load(o);
   const mm::sim::scenario& s = loaded.scenario;
-  std::cout << fmt::format("{}: valid ({}): {} planning, {} scripted, {} pedestrians, {} static; {} s at {} s steps\n",
+  std::cout << fmt::format("{}: valid ({}): {} planning, {} scripted, {} pedestrians, {} static; {} s at {:g} s steps\n",
                            loaded.source, s.name, s.planning_vehicles.size(), s.scripted_vehicles.size(),
-                           s.pedestrians.size(), s.static_obstacles.size(), mm::cli::fixed(s.duration, 2),
-                           mm::cli::fixed(s.time_step, 3));
+                           s.pedestrians.size(), s.static_obstacles.size(), mm::cli::fixed(s.duration, 2), s.time_step);
   for (const sf::parameter& p : loaded.parameters) std::cout << fmt::format("  parameter {} = {}\n", p.name, p.value);
   for (const sf::meeting_report& m : loaded.meetings) {
     std::cout << fmt::format("  meet {} and {}: {} m ({} s) and {} m ({} s), lag {} s: start at {} s and {} s\n", m.first,

@@ -309,6 +309,15 @@ TEST(simulation, scenario_validation_names_the_agent_and_the_field) {
   endless.duration = 1e5;  // exactly 10^7 steps
   EXPECT_FALSE(validation_error(endless).has_value());
 
+  scenario long_memory = s;
+  long_memory.planning_vehicles[0].planner.history_window = 10.5;  // tracks of 1050 observations
+  EXPECT_EQ(validation_error(long_memory).value(),
+            "planning_vehicles[0] \"A\": planner.history_window = 10.5: expected at most 1000 time steps of 0.01 s "
+            "(10 s), the longest track the simulator keeps");
+  EXPECT_THROW(simulation{long_memory}, std::invalid_argument);
+  long_memory.planning_vehicles[0].planner.history_window = 10.0;
+  EXPECT_FALSE(validation_error(long_memory).has_value());
+
   scenario same_name = s;
   same_name.scripted_vehicles[0].name = "A";
   EXPECT_NE(validation_error(same_name).value().find("scripted_vehicles[0] \"A\": name"), std::string::npos);

@@ -25,6 +25,10 @@ inline constexpr double largest_road_user_speed = 100.0;  ///< [m/s]
 /// The most time steps a run may take (duration / time_step): 10⁷, almost 28 hours at 100 Hz. A
 /// longer run is refused rather than simulated for days, or its step count overflowed.
 inline constexpr double largest_step_count = 1e7;
+/// The most time steps a planning vehicle's history window may span (history_window / time_step):
+/// 1000, 10 s at 100 Hz. Its tracks hold that many observations of every other agent, and a window
+/// of 1000 s at microsecond steps would ask for terabytes.
+inline constexpr double largest_history_steps = 1000.0;
 
 /// Gaussian sensor noise on every observation a planning vehicle makes (spec §4): independent,
 /// zero-mean, with these standard deviations. Zero (the default) is exact sensing.
