@@ -1,5 +1,7 @@
 """CommonRoad recordings from Python: read, measure, and the same room as the planner (docs/python.md)."""
 import pickle
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -84,6 +86,22 @@ def test_a_replay_drives_one_road_user_with_the_planner_and_replays_the_others(s
     assert len(planned.maps[0].times) > 0 and planned.metrics[0].max_lateral_offset_m > 0.5
     with pytest.raises(mm.commonroad.measure_error, match="a pedestrian"):
         mm.commonroad.replay_scenario(s, 35)
+
+
+def test_the_long_recording_generator_writes_a_recording_that_replays(source_dir):
+    # tools/python/make_long_recording.py makes the recordings of docs/simulator.md's replay-cost table.
+    text = subprocess.run([sys.executable, str(source_dir / "tools/python/make_long_recording.py"), "--seconds", "2",
+                           "--cars", "3"], check=True, capture_output=True, text=True).stdout
+    s = mm.commonroad.read_scenario_text(text, "long.xml")
+    assert s.time_step == 0.04
+    assert mm.commonroad.measurable_road_users(s) == [1, 2, 3]
+    assert all(len(s.obstacle(i).states) == 50 for i in (1, 2, 3))
+    run = mm.sim.run(mm.commonroad.replay_scenario(s, 1, avoidance=False))
+    assert not any(m.crash for m in run.metrics)
+    # Replayed car 2's speed changes by its accel over each step (docs/outputs.md).
+    present = run.present[:-1, 1] & run.present[1:, 1]
+    change = run.speed[1:, 1] - run.speed[:-1, 1]
+    assert np.allclose(change[present], (run.acceleration[:-1, 1] * 0.01)[present], atol=1e-9)
 
 
 def test_a_reactive_replay_holds_up_the_car_behind_the_driven_one(source_dir):
