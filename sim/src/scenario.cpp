@@ -128,8 +128,8 @@ void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_s
             "at least the time step " + number(time_step) + " s, so that a track holds two observations");
   c.require(!(v.planner.history_window / time_step > largest_history_steps), "planner.history_window",
             v.planner.history_window,
-            "at most 1000 time steps of " + number(time_step) + " s (" + number(largest_history_steps * time_step) +
-                " s), the longest track the simulator keeps");
+            "at most " + number(largest_history_steps) + " time steps of " + number(time_step) + " s (" +
+                number(largest_history_steps * time_step) + " s), the longest track the simulator keeps");
   if (c.error || v.path.empty()) return;
   // The planner's own checks of the limits, the footprint and the configuration.
   mm::plan_input probe;

@@ -25,6 +25,10 @@ std::vector<piece> pieces(const speed_profile& profile) {
   return result;
 }
 
+/// The distance covered in the first `x` seconds of piece `p` [m]: v·x + a·x²/2. Every distance of
+/// the profile is a sum of these, so the reference and the table add the same terms.
+double covered_within(const piece& p, double x) { return p.speed * x + 0.5 * p.acceleration * x * x; }
+
 /// The piece that contains clock τ (the later one on a knot).
 piece piece_at(const std::vector<piece>& all, double clock) {
   for (const piece& p : all) {
@@ -49,7 +53,7 @@ double profile_distance(const speed_profile& profile, double clock) {
   for (const piece& p : pieces(profile)) {
     if (clock <= p.begin) break;
     const double x = std::min(clock - p.begin, p.duration);
-    distance += p.speed * x + 0.5 * p.acceleration * x * x;
+    distance += covered_within(p, x);
   }
   return distance;
 }
@@ -62,7 +66,7 @@ std::optional<double> profile_time_to_cover(const speed_profile& profile, double
       if (p.speed <= 0.0) return std::nullopt;
       return p.begin + remaining / p.speed;
     }
-    const double covered = p.speed * p.duration + 0.5 * p.acceleration * p.duration * p.duration;
+    const double covered = covered_within(p, p.duration);
     if (remaining <= covered) {
       // v_a·x + a·x²/2 = remaining, the root in [0, duration], in the form that is stable for a → 0.
       const double root = std::sqrt(std::max(0.0, p.speed * p.speed + 2.0 * p.acceleration * remaining));
@@ -135,7 +139,7 @@ tabulated_profile::tabulated_profile(const speed_profile& profile) : pieces_(pie
     end = std::max(end, p.begin + p.duration);
     end_so_far_.push_back(end);
     covered_.push_back(covered);
-    if (std::isfinite(p.duration)) covered += p.speed * p.duration + 0.5 * p.acceleration * p.duration * p.duration;
+    if (std::isfinite(p.duration)) covered += covered_within(p, p.duration);
   }
 }
 
@@ -165,7 +169,7 @@ double tabulated_profile::distance(double clock) const {
   const std::size_t last = static_cast<std::size_t>(after - pieces_.begin()) - 1;
   const piece& p = pieces_[last];
   const double x = std::min(clock - p.begin, p.duration);
-  return covered_[last] + (p.speed * x + 0.5 * p.acceleration * x * x);
+  return covered_[last] + covered_within(p, x);
 }
 
 prepared_script::prepared_script(const scripted_motion& motion)

@@ -110,21 +110,19 @@ TEST(replay, every_replayed_road_user_is_where_it_was_recorded_at_every_recorded
 /// state's acceleration gives over the step: v(t + Δt) = v(t) + a(t)·Δt. Returns the number of steps
 /// on which a speed changed.
 std::size_t check_speed_changes(const mm::sim::scenario& sc, const std::vector<std::string>& names) {
-  mm::sim::simulation sim(sc);
-  std::vector<mm::sim::agent_state> before(sim.states().begin(), sim.states().end());
+  std::vector<mm::sim::agent_state> before;
   std::size_t changing = 0;
-  while (!sim.ended()) {
-    sim.step();
+  run(sc, [&](const mm::sim::simulation& sim) {
     for (const std::string& name : names) {
       const mm::sim::agent_id id = *sim.find(name);
+      if (before.empty() || !before[id].present() || !sim.state(id).present()) continue;
       const mm::sim::agent_state& was = before[id];
       const mm::sim::agent_state& is = sim.state(id);
-      if (!was.present() || !is.present()) continue;
       EXPECT_NEAR(is.speed, was.speed + was.acceleration * sc.time_step, 1e-9) << name << " at " << sim.time() - sc.time_step;
       if (is.speed != was.speed) ++changing;
     }
     before.assign(sim.states().begin(), sim.states().end());
-  }
+  });
   return changing;
 }
 

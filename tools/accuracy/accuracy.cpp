@@ -28,6 +28,9 @@
 
 namespace {
 
+/// Spec §11's bound on |MI_fast − MI_reference|, and on how far below the reference's a pick may lie.
+constexpr double accuracy_bound = 0.02;
+
 struct fast_setting {
   mm::sampling_resolution resolution;
   double time_step;
@@ -158,8 +161,8 @@ int measure(const accuracy_options& o) {
       // several, τ̄ and the family where the reference's best forecast time leads by more.
       const bool disagrees =
           mm::plan_comparison::relevant_obstacles(r) == 1
-              ? mm::plan_comparison::pick_shortfall(f, r) > 0.02
-              : mm::plan_comparison::forecast_time_margin(r) > 0.02 &&
+              ? mm::plan_comparison::pick_shortfall(f, r) > accuracy_bound
+              : mm::plan_comparison::forecast_time_margin(r) > accuracy_bound &&
                     (f.forecast_index != r.forecast_index || f.selected_family != r.selected_family);
       setting.disagreements += disagrees ? 1 : 0;
       if (signs) {
@@ -194,7 +197,7 @@ int measure(const accuracy_options& o) {
   for (fast_setting& setting : settings) {
     std::sort(setting.errors.begin(), setting.errors.end());
     const auto over = static_cast<std::size_t>(
-        std::count_if(setting.errors.begin(), setting.errors.end(), [](double e) { return e > 0.02; }));
+        std::count_if(setting.errors.begin(), setting.errors.end(), [](double e) { return e > accuracy_bound; }));
     std::printf("%-16s %9.4f %9.4f %9.4f %10zu %14zu %12.3f\n", setting.label().c_str(), setting.worst,
                 setting.errors[setting.errors.size() * 95 / 100], setting.errors[setting.errors.size() / 2], over,
                 setting.disagreements, 1e3 * setting.seconds / static_cast<double>(scenes));
