@@ -49,20 +49,15 @@ struct fast_setting {
   }
 };
 
-constexpr std::uint64_t max_grid_nodes = 2001;  ///< the planner's bound on a grid's side (config.resolution)
-
 /// One AxC@DT entry of --fast: none when malformed or out of range.
 std::optional<fast_setting> parse_setting(std::string_view item) {
-  const std::size_t by = item.find('x');
   const std::size_t at = item.find('@');
-  if (by == std::string_view::npos || at == std::string_view::npos || at < by) return std::nullopt;
-  const auto a = mm::tool_cli::parse_whole(item.substr(0, by));
-  const auto c = mm::tool_cli::parse_whole(item.substr(by + 1, at - by - 1));
+  if (at == std::string_view::npos) return std::nullopt;
+  const auto grid = mm::tool_cli::parse_grid(item.substr(0, at));
   const auto dt = mm::tool_cli::parse_real(item.substr(at + 1));
-  if (!a || !c || !dt || *a < 2 || *a > max_grid_nodes || *c < 1 || *c > max_grid_nodes || !(*dt > 0.0)) {
-    return std::nullopt;
-  }
-  return fast_setting{{static_cast<std::size_t>(*a), static_cast<std::size_t>(*c)}, *dt, 0.0, {}, 0, 0.0, 0, 0, 0};
+  if (!grid || !dt || !(*dt > 0.0)) return std::nullopt;
+  return fast_setting{{static_cast<std::size_t>(grid->accelerations), static_cast<std::size_t>(grid->curvatures)},
+                      *dt, 0.0, {}, 0, 0.0, 0, 0, 0};
 }
 
 /// "11x15@0.05,21x21@0.02" → settings; the error names the first bad entry.
@@ -232,11 +227,11 @@ int main(int argc, char** argv) {
       ->check(fast_settings())
       ->type_name("AxC@DT,...")
       ->capture_default_str();
-  cli::add_whole(app, "--ref-accelerations", o.reference.sampling.accelerations, 2, max_grid_nodes,
+  cli::add_whole(app, "--ref-accelerations", o.reference.sampling.accelerations, 2, cli::largest_grid_side,
                  "Reference grid: accelerations per family (2 to 2001)", "A");
-  cli::add_whole(app, "--ref-curvatures", o.reference.sampling.curvatures, 1, max_grid_nodes,
+  cli::add_whole(app, "--ref-curvatures", o.reference.sampling.curvatures, 1, cli::largest_grid_side,
                  "Reference grid: curvatures (1 to 2001)", "C");
-  cli::add_whole(app, "--ref-accelerations-1d", o.reference.one_dimensional_accelerations, 2, max_grid_nodes,
+  cli::add_whole(app, "--ref-accelerations-1d", o.reference.one_dimensional_accelerations, 2, cli::largest_grid_side,
                  "Reference grid without steering: accelerations per family (2 to 2001)", "A");
   cli::add_real(app, "--ref-proof-resolution", o.reference.proof_resolution, cli::real_bound::positive, "s",
                 "Time resolution of the reference's continuous-time collision proof [s] (> 0)", "S");

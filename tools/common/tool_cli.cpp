@@ -53,6 +53,26 @@ std::optional<double> parse_real(std::string_view text) {
   return value;
 }
 
+std::optional<grid> parse_grid(std::string_view text) {
+  const std::size_t by = text.find('x');
+  if (by == std::string_view::npos) return std::nullopt;
+  const std::optional<std::uint64_t> a = parse_whole(text.substr(0, by));
+  const std::optional<std::uint64_t> c = parse_whole(text.substr(by + 1));
+  if (!a || !c || *a < 2 || *a > largest_grid_side || *c < 1 || *c > largest_grid_side) return std::nullopt;
+  return grid{*a, *c};
+}
+
+CLI::Validator grid_of_samples() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        if (parse_grid(text)) return {};
+        return "expected AxC, A accelerations per family from 2 to 2001 and C curvatures from 1 to 2001 "
+               "(e.g. 15x21), got " +
+               in_quotes(text);
+      },
+      "");
+}
+
 CLI::Validator whole_number(std::uint64_t min, std::uint64_t max) {
   std::string expected;
   if (min == 0 && max == 1) {

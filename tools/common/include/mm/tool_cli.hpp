@@ -24,6 +24,22 @@ std::optional<std::uint64_t> parse_whole(std::string_view text);
 /// `text` as a finite real number, read as std::strtod (and so std::atof) reads it, all of it; none otherwise.
 std::optional<double> parse_real(std::string_view text);
 
+/// The largest side of a sampling grid (`planner_config::resolution`), as the planner bounds it.
+inline constexpr std::uint64_t largest_grid_side = 2001;
+
+/// A planner's sampling grid as a command line writes it, "AxC": A accelerations per family (2 to
+/// 2001), C curvatures (1 to 2001).
+struct grid {
+  std::uint64_t accelerations = 0;
+  std::uint64_t curvatures = 0;
+};
+
+/// `text` as "AxC" with both in range; none otherwise.
+std::optional<grid> parse_grid(std::string_view text);
+
+/// Accepts "AxC" as `parse_grid` reads it; its error message says what is expected and quotes the value.
+CLI::Validator grid_of_samples();
+
 /// Accepts a whole number from `min` to `max` (or `unbounded`); its error message says so and quotes the value.
 CLI::Validator whole_number(std::uint64_t min, std::uint64_t max);
 
