@@ -56,8 +56,7 @@ std::optional<fast_setting> parse_setting(std::string_view item) {
   const auto grid = mm::tool_cli::parse_grid(item.substr(0, at));
   const auto dt = mm::tool_cli::parse_real(item.substr(at + 1));
   if (!grid || !dt || !(*dt > 0.0)) return std::nullopt;
-  return fast_setting{{static_cast<std::size_t>(grid->accelerations), static_cast<std::size_t>(grid->curvatures)},
-                      *dt, 0.0, {}, 0, 0.0, 0, 0, 0};
+  return fast_setting{{grid->accelerations, grid->curvatures}, *dt, 0.0, {}, 0, 0.0, 0, 0, 0};
 }
 
 /// "11x15@0.05,21x21@0.02" → settings; the error names the first bad entry.

@@ -66,9 +66,9 @@ CLI::Validator grid_of_samples() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         if (parse_grid(text)) return {};
-        return "expected AxC, A accelerations per family from 2 to 2001 and C curvatures from 1 to 2001 "
-               "(e.g. 15x21), got " +
-               in_quotes(text);
+        const std::string side = std::to_string(largest_grid_side);
+        return "expected AxC, A accelerations per family from 2 to " + side + " and C curvatures from 1 to " +
+               side + " (e.g. 15x21), got " + in_quotes(text);
       },
       "");
 }

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "mm/capture.hpp"
+#include "mm/displacement_set.hpp"
 #include "mm/scenario_options.hpp"
 #include "mm/plan_comparison.hpp"
 #include "mm/reference_planner.hpp"
@@ -53,9 +54,9 @@ struct options : mm::capture::scenario_options {
   double bound = 0.02;
   bool check = false;
   std::string csv;
-  /// Every planning vehicle's sampling grid instead of the scenario's ("AxC"): which grid meets the
-  /// bound on a scenario (docs/method.md §7).
-  std::string resolution;
+  /// Every planning vehicle's sampling grid instead of the scenario's (--resolution AxC): which grid
+  /// meets the bound on a scenario (docs/method.md §7).
+  std::optional<mm::sampling_resolution> resolution;
 };
 
 /// One compared plan.
@@ -180,11 +181,8 @@ double quantile(const std::vector<double>& sorted, double q) {
 int measure(const options& o) {
   const mm::scenario_file::load_options load = o.load_options();
   mm::sim::scenario scenario = mm::scenario_file::load(o.scenario, load).scenario;
-  if (!o.resolution.empty()) {
-    const mm::tool_cli::grid grid = *mm::tool_cli::parse_grid(o.resolution);
-    for (mm::sim::planning_vehicle& v : scenario.planning_vehicles) {
-      v.planner.resolution = {static_cast<std::size_t>(grid.accelerations), static_cast<std::size_t>(grid.curvatures)};
-    }
+  if (o.resolution) {
+    for (mm::sim::planning_vehicle& v : scenario.planning_vehicles) v.planner.resolution = *o.resolution;
   }
   mm::sim::simulation sim(std::move(scenario), mm::capture::every_core());
   if (!o.agent.empty()) mm::capture::check_planning_vehicle(sim, o.agent, o.scenario);
@@ -255,12 +253,15 @@ int measure(const options& o) {
   }
   std::sort(worst.begin(), worst.end());
   const auto count = static_cast<double>(std::max<std::size_t>(plans.size(), 1));
+  const std::string grid_note = o.resolution ? "; every planning vehicle at " +
+                                                   std::to_string(o.resolution->accelerations) + "x" +
+                                                   std::to_string(o.resolution->curvatures)
+                                             : "";
   std::printf("%s: %zu plans%s%s (every %zu), %zu compared, %zu with a relevant obstacle, %zu with several; "
-              "reference %zux%zu (%zux1 without steering), proof %g s%s%s\n",
+              "reference %zux%zu (%zux1 without steering), proof %g s%s\n",
               o.scenario.c_str(), plans.size(), o.agent.empty() ? "" : " of ", o.agent.c_str(), o.every, compared,
               interacting, several, o.reference.sampling.accelerations, o.reference.sampling.curvatures,
-              o.reference.one_dimensional_accelerations, o.reference.proof_resolution,
-              o.resolution.empty() ? "" : "; every planning vehicle at ", o.resolution.c_str());
+              o.reference.one_dimensional_accelerations, o.reference.proof_resolution, grid_note.c_str());
   if (largest != nullptr) {
     std::printf("map: max |dMI| %.4f (%s at %.2f s, tau %.3f s, %s); over the plans with a relevant obstacle: "
                 "median %.4f, p99 %.4f; plans over %g: %zu\n",
@@ -326,9 +327,14 @@ int main(int argc, char** argv) {
                 "Time resolution of the reference's continuous-time collision proof [s] (> 0)", "S");
   cli::add_real(app, "--bound", o.bound, cli::real_bound::positive, "",
                 "The accuracy bound of spec §11 (> 0)", "B");
-  app.add_option("--resolution", o.resolution,
-                 "Plan every planning vehicle at this grid instead of its own: A accelerations per family (2 to "
-                 "2001) x C curvatures (1 to 2001)")
+  app.add_option_function<std::string>(
+      "--resolution",
+      [&o](const std::string& text) {
+        const cli::grid grid = *cli::parse_grid(text);  // checked by grid_of_samples
+        o.resolution = mm::sampling_resolution{grid.accelerations, grid.curvatures};
+      },
+      "Plan every planning vehicle at this grid instead of its own: A accelerations per family (2 to 2001) x C "
+      "curvatures (1 to 2001)")
       ->check(cli::grid_of_samples())
       ->type_name("AxC");
   app.add_flag("--check", o.check, "Exit with code 1 when a plan breaks the bound");

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 
 #include <concepts>
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
@@ -25,13 +26,13 @@ std::optional<std::uint64_t> parse_whole(std::string_view text);
 std::optional<double> parse_real(std::string_view text);
 
 /// The largest side of a sampling grid (`planner_config::resolution`), as the planner bounds it.
-inline constexpr std::uint64_t largest_grid_side = 2001;
+inline constexpr std::size_t largest_grid_side = 2001;
 
 /// A planner's sampling grid as a command line writes it, "AxC": A accelerations per family (2 to
-/// 2001), C curvatures (1 to 2001).
+/// 2001), C curvatures (1 to 2001); the fields of `mm::sampling_resolution`.
 struct grid {
-  std::uint64_t accelerations = 0;
-  std::uint64_t curvatures = 0;
+  std::size_t accelerations = 0;
+  std::size_t curvatures = 0;
 };
 
 /// `text` as "AxC" with both in range; none otherwise.
