@@ -219,7 +219,8 @@ def test_recorded_samples_come_as_arrays_of_one_length_and_the_command_is_a_safe
     assert samples is not None
     count = len(samples.accelerations)
     assert len(samples.families) == len(samples.curvatures) == count
-    assert count >= 2 * 15 * 21  # both families' grids, and their nominal-curvature columns
+    grid = scene.config.resolution
+    assert count >= 2 * grid.accelerations * grid.curvatures  # both grids and their nominal columns
     assert samples.end_points.shape == (count, 2)
     assert samples.area_weights.shape == samples.safe_selected.shape == (count,)
     assert samples.safe_by_forecast.shape == (17, count)

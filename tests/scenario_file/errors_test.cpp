@@ -200,7 +200,7 @@ const std::vector<error_case> cases{
      7, "agents[0] \"A\"", {"planner.collision_window = 3", "at least planner.displacement_horizon = 4"}},
     {"a collision window too long for a planning step to hold",
      with_line(13, "    desired_speed_kmh: 30\n    planner: {collision_window_s: 1.0e9}"), 7, "agents[0] \"A\"",
-     {"planner.collision_window = 1e+09", "expected at most 3.964e+04 s with planner.max_time_step = 0.05 s",
+     {"planner.collision_window = 1e+09", "expected at most 4.695e+04 s with planner.max_time_step = 0.05 s",
       "exceed the 5e8 pairs"}},
     {"a collision time step below the shortest the planner takes",
      with_line(13, "    desired_speed_kmh: 30\n    planner: {max_time_step_s: 1.0e-9}"), 7, "agents[0] \"A\"",

@@ -17,8 +17,8 @@ std::string_view to_string(family f);
 
 /// Sampling of a displacement set: a grid of nodes in (a, κ).
 struct sampling_resolution {
-  std::size_t accelerations = 15;  ///< nodes per family in a (≥ 2), from the limit to a = 0
-  std::size_t curvatures = 21;     ///< nodes in κ (≥ 1), from −κ_max to κ_max
+  std::size_t accelerations = 14;  ///< nodes per family in a (≥ 2), from the limit to a = 0
+  std::size_t curvatures = 19;     ///< nodes in κ (≥ 1), from −κ_max to κ_max
 };
 
 /// Area element of the end-point map (s, κ) ↦ arc_point(κ, s) (spec §3):

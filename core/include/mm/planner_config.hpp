@@ -21,9 +21,9 @@ struct planner_config {
   forecast_policy policy;             ///< ADJ, constant τ (spec §7), or robust (docs/method.md §8)
   effort_weights effort;              ///< w_lon, w_lat of J (spec §8)
   bool urgent_steering = false;       ///< spec §8.3, the paper's case-study setting
-  /// Samples per family: 15 accelerations × 21 curvatures, which meets spec §11's 0.02 bound
-  /// against the reference on every step of the built-in scenarios and on random scenes; 14 × 19
-  /// does too, 10 % cheaper, and is not the default yet (docs/method.md §5 item 18, §7).
+  /// Samples per family: 14 accelerations × 19 curvatures, the cheapest grid measured to meet
+  /// spec §11's 0.02 bound against the reference on every step of the built-in scenarios
+  /// (docs/method.md §7, "Which grid is the cheapest on the built-in scenarios").
   sampling_resolution resolution;
   /// Upper bound on the collision time step [s]; the step is also kept below the tunneling bound
   /// of spec §5 for every relevant obstacle.
