@@ -40,9 +40,9 @@ const saved_input& dense_following() {
   static const saved_input input{
       "benchmarks/inputs/s6-e09-16.94s.json",
       "S6 at 16.94 s: E09 in the ring, 6.5 m behind the car it follows (centre to centre), 38 of its 39 "
-      "neighbours relevant; a typical plan of the run's dense seconds (16 to 18 s: median 5.4 ms with two "
-      "threads in maneuvermap run s6-busy-roundabout --jobs 2 --timing; this one 6.5 ms). Saved with "
-      "maneuvermap_capture s6-busy-roundabout --agent E09 --at 16.94 --save FILE (87 s to simulate there)"};
+      "neighbours relevant; a typical plan of the run's dense seconds (16 to 18 s: median 3.5 ms with two "
+      "threads in maneuvermap run s6-busy-roundabout --jobs 2 --timing; this one 5.0 ms). Saved with "
+      "maneuvermap_capture s6-busy-roundabout --agent E09 --at 16.94 --save FILE (100 s to simulate there)"};
   return input;
 }
 
