@@ -68,7 +68,7 @@ CLI::Validator grid_of_samples() {
         if (parse_grid(text)) return {};
         const std::string side = std::to_string(largest_grid_side);
         return "expected AxC, A accelerations per family from 2 to " + side + " and C curvatures from 1 to " +
-               side + " (e.g. 15x21), got " + in_quotes(text);
+               side + " (e.g. 14x19), got " + in_quotes(text);
       },
       "");
 }
