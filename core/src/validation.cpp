@@ -115,9 +115,11 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.non_negative("config.safety_margin", k.safety_margin, "metres");
   c.non_negative("config.effort.longitudinal", k.effort.longitudinal, "s⁴/m²");
   c.non_negative("config.effort.lateral", k.effort.lateral, "s⁴/m²");
-  c.require(k.resolution.accelerations >= 2 && k.resolution.accelerations <= 2001, "config.resolution.accelerations",
+  c.require(k.resolution.accelerations >= 2 && k.resolution.accelerations <= largest_sampling_side,
+            "config.resolution.accelerations",
             static_cast<double>(k.resolution.accelerations), "an integer from 2 to 2001");
-  c.require(k.resolution.curvatures >= 1 && k.resolution.curvatures <= 2001, "config.resolution.curvatures",
+  c.require(k.resolution.curvatures >= 1 && k.resolution.curvatures <= largest_sampling_side,
+            "config.resolution.curvatures",
             static_cast<double>(k.resolution.curvatures), "an integer from 1 to 2001");
   c.positive("config.max_time_step", k.max_time_step, "seconds");
   c.require(!(k.max_time_step < smallest_collision_time_step), "config.max_time_step", k.max_time_step,

@@ -506,8 +506,10 @@ class mapper {
     if (v.has("resolution")) {
       const map_view r = v.child("resolution");
       r.allow({"accelerations", "curvatures"});
-      if (auto f = r.get("accelerations")) c.resolution.accelerations = read_integer(ctx_, *f, 2001);
-      if (auto f = r.get("curvatures")) c.resolution.curvatures = read_integer(ctx_, *f, 2001);
+      if (auto f = r.get("accelerations")) {
+        c.resolution.accelerations = read_integer(ctx_, *f, mm::largest_sampling_side);
+      }
+      if (auto f = r.get("curvatures")) c.resolution.curvatures = read_integer(ctx_, *f, mm::largest_sampling_side);
     }
     c.max_time_step = v.quantity_or("max_time_step", {seconds}, c.max_time_step, range::positive);
     if (v.has("effort_weights")) {

@@ -56,7 +56,7 @@ std::optional<fast_setting> parse_setting(std::string_view item) {
   const auto grid = mm::tool_cli::parse_grid(item.substr(0, at));
   const auto dt = mm::tool_cli::parse_real(item.substr(at + 1));
   if (!grid || !dt || !(*dt > 0.0)) return std::nullopt;
-  return fast_setting{{grid->accelerations, grid->curvatures}, *dt, 0.0, {}, 0, 0.0, 0, 0, 0};
+  return fast_setting{*grid, *dt, 0.0, {}, 0, 0.0, 0, 0, 0};
 }
 
 /// "11x15@0.05,21x21@0.02" → settings; the error names the first bad entry.
@@ -226,11 +226,11 @@ int main(int argc, char** argv) {
       ->check(fast_settings())
       ->type_name("AxC@DT,...")
       ->capture_default_str();
-  cli::add_whole(app, "--ref-accelerations", o.reference.sampling.accelerations, 2, cli::largest_grid_side,
+  cli::add_whole(app, "--ref-accelerations", o.reference.sampling.accelerations, 2, mm::largest_sampling_side,
                  "Reference grid: accelerations per family (2 to 2001)", "A");
-  cli::add_whole(app, "--ref-curvatures", o.reference.sampling.curvatures, 1, cli::largest_grid_side,
+  cli::add_whole(app, "--ref-curvatures", o.reference.sampling.curvatures, 1, mm::largest_sampling_side,
                  "Reference grid: curvatures (1 to 2001)", "C");
-  cli::add_whole(app, "--ref-accelerations-1d", o.reference.one_dimensional_accelerations, 2, cli::largest_grid_side,
+  cli::add_whole(app, "--ref-accelerations-1d", o.reference.one_dimensional_accelerations, 2, mm::largest_sampling_side,
                  "Reference grid without steering: accelerations per family (2 to 2001)", "A");
   cli::add_real(app, "--ref-proof-resolution", o.reference.proof_resolution, cli::real_bound::positive, "s",
                 "Time resolution of the reference's continuous-time collision proof [s] (> 0)", "S");

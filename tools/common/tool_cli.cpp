@@ -53,20 +53,22 @@ std::optional<double> parse_real(std::string_view text) {
   return value;
 }
 
-std::optional<grid> parse_grid(std::string_view text) {
+std::optional<mm::sampling_resolution> parse_grid(std::string_view text) {
   const std::size_t by = text.find('x');
   if (by == std::string_view::npos) return std::nullopt;
   const std::optional<std::uint64_t> a = parse_whole(text.substr(0, by));
   const std::optional<std::uint64_t> c = parse_whole(text.substr(by + 1));
-  if (!a || !c || *a < 2 || *a > largest_grid_side || *c < 1 || *c > largest_grid_side) return std::nullopt;
-  return grid{*a, *c};
+  if (!a || !c || *a < 2 || *a > mm::largest_sampling_side || *c < 1 || *c > mm::largest_sampling_side) {
+    return std::nullopt;
+  }
+  return mm::sampling_resolution{*a, *c};
 }
 
 CLI::Validator grid_of_samples() {
   return CLI::Validator(
       [](std::string& text) -> std::string {
         if (parse_grid(text)) return {};
-        const std::string side = std::to_string(largest_grid_side);
+        const std::string side = std::to_string(mm::largest_sampling_side);
         return "expected AxC, A accelerations per family from 2 to " + side + " and C curvatures from 1 to " +
                side + " (e.g. 14x19), got " + in_quotes(text);
       },

@@ -329,10 +329,7 @@ int main(int argc, char** argv) {
                 "The accuracy bound of spec §11 (> 0)", "B");
   app.add_option_function<std::string>(
       "--resolution",
-      [&o](const std::string& text) {
-        const cli::grid grid = *cli::parse_grid(text);  // checked by grid_of_samples
-        o.resolution = mm::sampling_resolution{grid.accelerations, grid.curvatures};
-      },
+      [&o](const std::string& text) { o.resolution = cli::parse_grid(text); },  // checked by grid_of_samples
       "Plan every planning vehicle at this grid instead of its own: A accelerations per family (2 to 2001) x C "
       "curvatures (1 to 2001)")
       ->check(cli::grid_of_samples())

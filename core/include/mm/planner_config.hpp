@@ -46,6 +46,10 @@ std::vector<double> forecast_times(const planner_config& config);
 /// The most forecast times the planner takes (`planner_config::forecast_count`; 17 in the paper).
 inline constexpr std::size_t largest_forecast_count = 1000;
 
+/// The largest side of the sampling grid the planner takes (`planner_config::resolution`, either
+/// field).
+inline constexpr std::size_t largest_sampling_side = 2001;
+
 /// The most (sampled maneuver, collision sample time) pairs one planning step may hold: 2 families
 /// × accelerations × curvatures maneuvers, times `sample_time_count` sample times. The finest
 /// resolution (2001 × 2001) over the default window (3 s at 0.05 s, 61 sample times) fits: about

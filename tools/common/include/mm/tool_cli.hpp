@@ -3,13 +3,14 @@
 #include <CLI/CLI.hpp>
 
 #include <concepts>
-#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <string>
 #include <string_view>
+
+#include "mm/planner_config.hpp"
 
 namespace mm::tool_cli {
 
@@ -25,18 +26,9 @@ std::optional<std::uint64_t> parse_whole(std::string_view text);
 /// `text` as a finite real number, read as std::strtod (and so std::atof) reads it, all of it; none otherwise.
 std::optional<double> parse_real(std::string_view text);
 
-/// The largest side of a sampling grid (`planner_config::resolution`), as the planner bounds it.
-inline constexpr std::size_t largest_grid_side = 2001;
-
-/// A planner's sampling grid as a command line writes it, "AxC": A accelerations per family (2 to
-/// 2001), C curvatures (1 to 2001); the fields of `mm::sampling_resolution`.
-struct grid {
-  std::size_t accelerations = 0;
-  std::size_t curvatures = 0;
-};
-
-/// `text` as "AxC" with both in range; none otherwise.
-std::optional<grid> parse_grid(std::string_view text);
+/// `text` as a planner's sampling grid as a command line writes it, "AxC": A accelerations per family
+/// (2 to `mm::largest_sampling_side`), C curvatures (1 to it); none otherwise.
+std::optional<mm::sampling_resolution> parse_grid(std::string_view text);
 
 /// Accepts "AxC" as `parse_grid` reads it; its error message says what is expected and quotes the value.
 CLI::Validator grid_of_samples();
