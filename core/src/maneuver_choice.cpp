@@ -88,7 +88,7 @@ std::optional<maneuver_decision> choose_maneuver(const choice_input& in) {
 }
 
 maneuver_decision near_crash_maneuver(const maneuver_samples& samples, std::span<const double> first_collision,
-                                      double nominal_curvature) {
+                                      std::span<const double> first_contact, double nominal_curvature) {
   std::size_t best = 0;
   const auto steering_change = [&](std::size_t m) { return std::abs(samples.maneuvers[m].curvature - nominal_curvature); };
   for (std::size_t m = 1; m < samples.size(); ++m) {
@@ -98,6 +98,8 @@ maneuver_decision near_crash_maneuver(const maneuver_samples& samples, std::span
       if (first_collision[m] > first_collision[best]) best = m;
     } else if (u.acceleration != b.acceleration) {
       if (u.acceleration < b.acceleration) best = m;
+    } else if (first_contact[m] != first_contact[best]) {
+      if (first_contact[m] > first_contact[best]) best = m;
     } else if (steering_change(m) < steering_change(best) - tie_tolerance) {
       best = m;
     }

@@ -922,7 +922,32 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
           }
         }
       }
-      const maneuver_decision last_resort = near_crash_maneuver(samples, first_collision, nominal.curvature);
+      // The maneuvers the first two keys leave tied (the latest first collision, the strongest
+      // braking among those: every maneuver of that acceleration once the ego is inside the margin)
+      // are run against the obstacles' bodies alone, without the margin, for the third key.
+      const double latest = *std::max_element(first_collision.begin(), first_collision.end());
+      double hardest = std::numeric_limits<double>::infinity();
+      for (std::size_t m = 0; m < samples.size(); ++m) {
+        if (first_collision[m] == latest) hardest = std::min(hardest, samples.maneuvers[m].acceleration);
+      }
+      const auto tied = [&](std::size_t m) {
+        return first_collision[m] == latest && samples.maneuvers[m].acceleration == hardest;
+      };
+      std::vector<maneuver> contenders;
+      for (std::size_t m = 0; m < samples.size(); ++m) {
+        if (tied(m)) contenders.push_back(samples.maneuvers[m]);
+      }
+      std::vector<double> first_contact(samples.size(), no_collision);
+      if (contenders.size() > 1) {
+        collision_window bodies = window;
+        bodies.margin = 0.0;
+        const std::vector<double> contact = first_collision_times(ego, contenders, relevant, assigned_tau, bodies);
+        for (std::size_t m = 0, k = 0; m < samples.size(); ++m) {
+          if (tied(m)) first_contact[m] = contact[k++];
+        }
+      }
+      const maneuver_decision last_resort =
+          near_crash_maneuver(samples, first_collision, first_contact, nominal.curvature);
       result.command = last_resort.command;
       result.mode = last_resort.mode;
     }

@@ -107,14 +107,49 @@ TEST(maneuver_choice, nothing_safe_yields_no_decision_and_near_crash_takes_the_l
   f.collide_where([](const maneuver&) { return true; });
   EXPECT_FALSE(choose_maneuver(f.input));
   std::vector<double> first(f.samples.size(), 1.0);
+  const std::vector<double> none(f.samples.size(), std::numeric_limits<double>::infinity());
   first[7] = 1.4;
   first[12] = 1.4;  // as late as sample 7; the one that brakes harder wins
-  const maneuver_decision d = near_crash_maneuver(f.samples, first, 0.0);
+  const maneuver_decision d = near_crash_maneuver(f.samples, first, none, 0.0);
   EXPECT_EQ(d.mode, planning_mode::near_crash);
   const std::size_t harder = f.samples.maneuvers[12].acceleration < f.samples.maneuvers[7].acceleration ? 12 : 7;
   EXPECT_EQ(d.sample, harder);
   first[3] = std::numeric_limits<double>::infinity();
-  EXPECT_EQ(near_crash_maneuver(f.samples, first, 0.0).sample, 3u);
+  EXPECT_EQ(near_crash_maneuver(f.samples, first, none, 0.0).sample, 3u);
+}
+
+TEST(maneuver_choice, near_crash_ties_at_the_hardest_braking_go_to_the_latest_contact_of_the_bodies) {
+  fixture f(0.0);
+  f.collide_where([](const maneuver&) { return true; });
+  // Inside the margin: every maneuver collides at t = 0, so the hardest braking wins, and among those
+  // the steering change alone would keep the nominal curvature.
+  const std::vector<double> at_once(f.samples.size(), 0.0);
+  std::vector<double> contact(f.samples.size(), 0.5);
+  std::size_t hardest = 0;
+  for (std::size_t m = 0; m < f.samples.size(); ++m) {
+    if (f.samples.maneuvers[m].acceleration < f.samples.maneuvers[hardest].acceleration) hardest = m;
+  }
+  const maneuver_decision by_steering = near_crash_maneuver(f.samples, at_once, contact, 0.0);
+  EXPECT_EQ(by_steering.command.acceleration, f.samples.maneuvers[hardest].acceleration);
+  EXPECT_EQ(by_steering.command.curvature, 0.0);
+  // A maneuver of that braking that touches later (here never) wins, steering or not.
+  std::size_t steering = f.samples.size();
+  for (std::size_t m = 0; m < f.samples.size(); ++m) {
+    const maneuver& u = f.samples.maneuvers[m];
+    if (u.acceleration == f.samples.maneuvers[hardest].acceleration && u.curvature > 0.0) steering = m;
+  }
+  ASSERT_LT(steering, f.samples.size());
+  contact[steering] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(near_crash_maneuver(f.samples, at_once, contact, 0.0).sample, steering);
+  // A maneuver that brakes less is not preferred for touching later.
+  std::size_t softer = f.samples.size();
+  for (std::size_t m = 0; m < f.samples.size(); ++m) {
+    if (f.samples.maneuvers[m].acceleration > f.samples.maneuvers[hardest].acceleration) softer = m;
+  }
+  contact.assign(f.samples.size(), 0.5);
+  contact[softer] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(near_crash_maneuver(f.samples, at_once, contact, 0.0).command.acceleration,
+            f.samples.maneuvers[hardest].acceleration);
 }
 
 }  // namespace

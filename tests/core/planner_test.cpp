@@ -567,5 +567,29 @@ TEST(planner, recorded_samples_of_the_fast_planner_are_those_of_the_reference_at
   }
 }
 
+TEST(planner, inside_the_margin_the_near_crash_brakes_hardest_and_steers_away_from_the_body) {
+  // A stopped car 0.2 m to the right of the ego (the margin is 0.3 m), and a path that turns right
+  // into it: every maneuver collides at t = 0, and braking hardest along the nominal curvature would
+  // touch the car, which braking as hard and steering left does not (docs/method.md §5 item 6).
+  plan_input in = ego_only(5.7);
+  in.config.safety_margin = 0.3;
+  in.nominal = {-7.0, -0.15};
+  in.obstacles.push_back(vehicle(5, {{4.0, -2.0}, 0.0}, 0.0, 0.0, in.time));
+  const collision_window bodies{in.config.displacement_horizon, in.config.collision_window,
+                                in.config.max_time_step, 0.0};
+  const std::array<forecast_obstacle, 1> car{forecast_obstacle{{{{4.0, -2.0}, 0.0}, 0.0, 0.0}, rectangle{}}};
+  const std::array<double, 1> tau{0.0};
+  ASSERT_NE(first_collision_time(in.ego, in.nominal, car, tau, bodies), no_collision);  // the premise
+  for (const bool reference : {false, true}) {
+    const plan_result r = reference ? plan_reference(in) : plan(in);
+    ASSERT_TRUE(r.ok()) << r.error;
+    EXPECT_EQ(r.mode, planning_mode::near_crash) << reference;
+    EXPECT_EQ(r.command.acceleration, -in.ego.limits.max_deceleration) << reference;
+    EXPECT_GT(r.command.curvature, in.nominal.curvature) << reference;
+    EXPECT_EQ(first_collision_time(in.ego, r.command, car, tau, bodies), no_collision)
+        << reference << ": " << r.command.acceleration << ", " << r.command.curvature;
+  }
+}
+
 }  // namespace
 }  // namespace mm

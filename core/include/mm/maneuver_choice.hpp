@@ -62,9 +62,14 @@ struct maneuver_decision {
 std::optional<maneuver_decision> choose_maneuver(const choice_input& input);
 
 /// Rule 4 of spec §8 (near-crash): the sample of latest first collision time
-/// (`first_collision[m]`, ∞ for none), ties to stronger braking, then to the smaller steering
-/// change from `nominal_curvature`, then to the first sample.
+/// (`first_collision[m]`, ∞ for none), ties to stronger braking, then to the latest first contact
+/// of the bodies without the safety margin (`first_contact[m]`, ∞ for none), then to the smaller
+/// steering change from `nominal_curvature`, then to the first sample. Only the values of
+/// `first_contact` at the samples the first two keys leave tied matter. The last two keys are
+/// additions to spec §8 (docs/method.md §5): inside the margin every maneuver collides at t = 0,
+/// and the steering change alone would brake along the nominal curvature, into the obstacle when
+/// the path leads there.
 maneuver_decision near_crash_maneuver(const maneuver_samples& samples, std::span<const double> first_collision,
-                                      double nominal_curvature);
+                                      std::span<const double> first_contact, double nominal_curvature);
 
 }  // namespace mm
