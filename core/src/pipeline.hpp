@@ -22,9 +22,9 @@ struct pipeline_options {
 /// The planner's clearance cap (`mm::planner_clearance_cap`).
 inline constexpr double clearance_cap = planner_clearance_cap;
 
-/// Smallest step of the continuous-time proof that a command is collision-free [s]: a command
-/// passing closer than the largest relative point speed times this is not proven safe (≈ 2–3 cm).
-inline constexpr double verification_resolution = 1e-3;
+/// Smallest step of the continuous-time proof that a command is collision-free [s]
+/// (`mm::command_proof_resolution`).
+inline constexpr double verification_resolution = command_proof_resolution;
 
 /// What consecutive planning steps of one vehicle share (`mm::planner`): the sampled sets and the
 /// ego sweep built on them, kept while the ego's speed, limits and footprint radius, the horizon

@@ -61,6 +61,11 @@ double tunneling_time_step(const ego_state& ego, const forecast_obstacle& obstac
 /// far beyond any road user's) is refused as invalid (docs/method.md, deviations).
 inline constexpr double smallest_collision_time_step = 1e-4;
 
+/// Smallest step of the planner's continuous-time proof that a command is collision-free [s]
+/// (`verified_collision_free`, docs/method.md §4.5): a command passing closer than the largest
+/// relative point speed times this (about 2–3 cm) is not proven safe.
+inline constexpr double command_proof_resolution = 1e-3;
+
 /// The first sample time at which the ego executing `u` overlaps one of `obstacles`, obstacle j
 /// following its forecast with forecast time `forecast_times[j]`; `no_collision` if none (spec §5).
 /// Sample times at which an obstacle cannot overlap yet (bounding discs apart by more than the
