@@ -85,6 +85,7 @@ void time_fields(const mm::plan_input& input, const mm::plan_result& r, int coun
 void prove_safe_samples(mm::plan_input input) {
   input.config.record_samples = true;
   const mm::plan_result r = mm::plan(input);
+  if (!r.ok() || !r.samples) throw std::runtime_error("--proofs: the plan recorded no samples: " + r.error);
   const mm::planner_config& c = input.config;
   const mm::collision_window window{c.displacement_horizon, c.collision_window, c.max_time_step, c.safety_margin};
   std::vector<mm::forecast_obstacle> obstacles;
