@@ -930,21 +930,20 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       for (std::size_t m = 0; m < samples.size(); ++m) {
         if (first_collision[m] == latest) hardest = std::min(hardest, samples.maneuvers[m].acceleration);
       }
-      const auto tied = [&](std::size_t m) {
-        return first_collision[m] == latest && samples.maneuvers[m].acceleration == hardest;
-      };
+      std::vector<std::size_t> tied;
       std::vector<maneuver> contenders;
       for (std::size_t m = 0; m < samples.size(); ++m) {
-        if (tied(m)) contenders.push_back(samples.maneuvers[m]);
+        if (first_collision[m] == latest && samples.maneuvers[m].acceleration == hardest) {
+          tied.push_back(m);
+          contenders.push_back(samples.maneuvers[m]);
+        }
       }
       std::vector<double> first_contact(samples.size(), no_collision);
-      if (contenders.size() > 1) {
+      if (tied.size() > 1) {
         collision_window bodies = window;
         bodies.margin = 0.0;
         const std::vector<double> contact = first_collision_times(ego, contenders, relevant, assigned_tau, bodies);
-        for (std::size_t m = 0, k = 0; m < samples.size(); ++m) {
-          if (tied(m)) first_contact[m] = contact[k++];
-        }
+        for (std::size_t k = 0; k < tied.size(); ++k) first_contact[tied[k]] = contact[k];
       }
       const maneuver_decision last_resort =
           near_crash_maneuver(samples, first_collision, first_contact, nominal.curvature);
