@@ -18,9 +18,9 @@
 #include <cstdint>
 #include <cstdio>
 #include <fstream>
-#include <stdexcept>
 #include <limits>
 #include <span>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -87,16 +87,16 @@ void prove_safe_samples(mm::plan_input input) {
   const mm::plan_result r = mm::plan(input);
   if (!r.ok() || !r.samples) throw std::runtime_error("--proofs: the plan recorded no samples: " + r.error);
   const mm::planner_config& c = input.config;
-  const mm::collision_window window{c.displacement_horizon, c.collision_window, c.max_time_step, c.safety_margin};
+  const mm::collision_window window{c.displacement_horizon, c.collision_window, r.collision_time_step,
+                                    c.safety_margin};
   std::vector<mm::forecast_obstacle> obstacles;
   std::vector<double> taus;
   std::vector<std::uint32_t> ids;
-  for (std::size_t j = 0; j < r.obstacles.size(); ++j) {
-    if (!r.obstacles[j].relevant) continue;
-    obstacles.push_back({r.obstacles[j].motion, input.obstacles[j].shape});
+  mm::capture::for_each_relevant(input, r, [&](std::size_t j, const mm::ego_sweep&, const mm::forecast_obstacle& o) {
+    obstacles.push_back(o);
     taus.push_back(r.forecast_times[r.obstacles[j].forecast_index]);
     ids.push_back(r.obstacles[j].id);
-  }
+  });
   const mm::sample_snapshot& samples = *r.samples;
   std::size_t safe = 0;
   std::size_t proven = 0;
