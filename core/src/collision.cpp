@@ -7,6 +7,8 @@
 #include <optional>
 #include <vector>
 
+#include "mm/translation.hpp"
+
 namespace mm {
 namespace {
 
@@ -205,14 +207,62 @@ bool maneuver_collides(const ego_state& ego, const maneuver& u,
   return first_collision_time(ego, u, obstacles, forecast_times, window) != no_collision;
 }
 
+namespace {
+
+/// How the ego executing `u` moves at time t [s]: its reference point's velocity [m/s], and bounds
+/// over [t, T_c] of its turn rate [rad/s] and of its reference point's acceleration [m/s²]:
+/// |κ|·v_max and |a| + |κ|·v_max² on the arc (t < T_h), 0 on the straight part after it.
+struct ego_motion_at {
+  vec2 velocity;
+  double turn_rate;
+  double acceleration;
+};
+
+ego_motion_at ego_motion(const ego_state& ego, const maneuver& u, const pose& at, double t,
+                         const collision_window& window, double largest) {
+  const double speed = speed_after(ego.speed, u.acceleration, std::min(t, window.horizon), ego.limits.speed_cap);
+  const vec2 velocity{speed * std::cos(at.heading), speed * std::sin(at.heading)};
+  if (t >= window.horizon) return {velocity, 0.0, 0.0};
+  const double turn = std::abs(u.curvature) * largest;
+  return {velocity, turn, std::abs(u.acceleration) + turn * largest};
+}
+
+/// The proof's second bound (docs/method.md §4.5): over [t, t + h] a footprint stays within its
+/// placement at t moved at its reference point's velocity at t, widened by R·ω·s + A·s²/2 at t + s
+/// (R its bounding radius, ω and A bounds of its turn rate and of its reference point's
+/// acceleration), so the signed distance at t + s is at least that of the two moved placements less
+/// ρ·s + A·s²/2, ρ = R_e·ω_e + R_o·ω_o, A = A_e + A_o. Returns the longest
+/// h = min(longest_translated_step, remaining)·2^−k longer than `shorter_than_this` [s] for which the
+/// smallest signed distance of the moved placements over [0, h] (closed form) exceeds the margin
+/// by more than ρ·h + A·h²/2; 0 when there is none.
+double translated_step(const placed_footprint& ego, const ego_motion_at& ego_moves, double ego_radius,
+                              const placed_footprint& obstacle, const forecast_obstacle& o, double forecast_time,
+                              double obstacle_radius, double heading, double t, double margin,
+                              double shorter_than_this, double remaining) {
+  const bool turning = t < forecast_time;
+  const double omega = turning ? std::abs(o.motion.yaw_rate) : 0.0;
+  const vec2 obstacle_velocity{o.motion.speed * std::cos(heading), o.motion.speed * std::sin(heading)};
+  const double rho = ego_moves.turn_rate * ego_radius + omega * obstacle_radius;
+  const double acceleration = ego_moves.acceleration + omega * o.motion.speed;
+  const vec2 relative = ego_moves.velocity - obstacle_velocity;
+  for (double h = std::min(longest_translated_step, remaining); h > shorter_than_this; h *= 0.5) {
+    const double closest = smallest_signed_distance(ego, obstacle, translation{relative, h}).distance;
+    if (closest - margin > h * (rho + 0.5 * acceleration * h)) return h;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
 bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
                              std::span<const double> forecast_times, const collision_window& window,
-                             double resolution) {
+                             double resolution, proof_steps stepping) {
   // The reference's steps, bit for bit; an obstacle whose bounding disc is so far from the ego's
   // that neither its clearance can be ≤ 0 nor its clearance / rate below the step so far is not
   // asked for its distance (its clearance is at least that gap, so it changes neither).
   const double ego_radius = bounding_radius(ego.shape);
-  const double ego_rate = largest_speed(ego, u, window.horizon) * (1.0 + std::abs(u.curvature) * ego_radius);
+  const double largest = largest_speed(ego, u, window.horizon);
+  const double ego_rate = largest * (1.0 + std::abs(u.curvature) * ego_radius);
   constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
   struct obstacle_step {
     double rate;    ///< largest rate of the pair's signed distance [m/s]
@@ -230,7 +280,10 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
   while (true) {
     const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
     const placed_footprint e = place(ego.shape, ego_pose);
-    double step = window.duration - t;
+    const ego_motion_at ego_moves =
+        stepping == proof_steps::translation_bound ? ego_motion(ego, u, ego_pose, t, window, largest) : ego_motion_at{};
+    const double remaining = window.duration - t;
+    double step = remaining;
     // The obstacle that most likely sets the step first: the smallest gap / rate.
     std::size_t first = none;
     double first_ratio = std::numeric_limits<double>::infinity();
@@ -249,9 +302,17 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
     const auto visit = [&](std::size_t j) {
       const obstacle_step& s = steps[j];
       if (s.gap > 0.0 && (s.rate <= 0.0 || s.gap / s.rate >= step)) return true;
-      const double clearance = signed_distance(e, place(obstacles[j].shape, s.at)) - window.margin;
+      const placed_footprint o = place(obstacles[j].shape, s.at);
+      const double clearance = signed_distance(e, o) - window.margin;
       if (clearance <= 0.0) return false;
-      if (s.rate > 0.0) step = std::min(step, clearance / s.rate);
+      if (s.rate > 0.0 && clearance / s.rate < step) {
+        const double longer = stepping == proof_steps::speed_bound
+                                  ? 0.0
+                                  : translated_step(e, ego_moves, ego_radius, o, obstacles[j], forecast_times[j],
+                                                    s.radius, s.at.heading, t, window.margin, clearance / s.rate,
+                                                    remaining);
+        step = std::min(step, std::max(clearance / s.rate, longer));
+      }
       return true;
     };
     if (first != none && !visit(first)) return false;
@@ -266,22 +327,35 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
 
 bool verified_collision_free_reference(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
                              std::span<const double> forecast_times, const collision_window& window,
-                             double resolution) {
+                             double resolution, proof_steps stepping) {
   // Largest speed of the ego's reference point along u, and of any of its footprint points.
-  const double ego_rate =
-      largest_speed(ego, u, window.horizon) * (1.0 + std::abs(u.curvature) * bounding_radius(ego.shape));
+  const double ego_radius = bounding_radius(ego.shape);
+  const double largest = largest_speed(ego, u, window.horizon);
+  const double ego_rate = largest * (1.0 + std::abs(u.curvature) * ego_radius);
   double t = 0.0;
   while (true) {
     const pose ego_pose = maneuver_pose(ego.pose, ego.speed, u, t, window.horizon, ego.limits.speed_cap);
     const placed_footprint e = place(ego.shape, ego_pose);
-    double step = window.duration - t;
+    const ego_motion_at ego_moves =
+        stepping == proof_steps::translation_bound ? ego_motion(ego, u, ego_pose, t, window, largest) : ego_motion_at{};
+    const double remaining = window.duration - t;
+    double step = remaining;
     for (std::size_t j = 0; j < obstacles.size(); ++j) {
       const forecast_obstacle& o = obstacles[j];
-      const double rate = ego_rate + o.motion.speed + std::abs(o.motion.yaw_rate) * bounding_radius(o.shape);
-      const double clearance =
-          signed_distance(e, place(o.shape, forecast_pose(o.motion, forecast_times[j], t))) - window.margin;
+      const double radius = bounding_radius(o.shape);
+      const double rate = ego_rate + o.motion.speed + std::abs(o.motion.yaw_rate) * radius;
+      const pose at = forecast_pose(o.motion, forecast_times[j], t);
+      const placed_footprint placed = place(o.shape, at);
+      const double clearance = signed_distance(e, placed) - window.margin;
       if (clearance <= 0.0) return false;
-      if (rate > 0.0) step = std::min(step, clearance / rate);
+      if (rate <= 0.0) continue;
+      // The speed bound c / L; the translation bound only where it could give a longer step.
+      const double longer = stepping == proof_steps::translation_bound && clearance / rate < step
+                                ? translated_step(e, ego_moves, ego_radius, placed, o, forecast_times[j],
+                                                         radius, at.heading, t, window.margin, clearance / rate,
+                                                         remaining)
+                                : 0.0;
+      step = std::min(step, std::max(clearance / rate, longer));
     }
     if (t >= window.duration) return true;
     if (step < resolution && step < window.duration - t) return false;

@@ -58,7 +58,7 @@ plan_result invalid(std::string error) {
 /// not turn (ω = 0) is the same under every τ, so such an obstacle is proven once, at τ = 0.
 bool verified_under_every_forecast(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
                                    std::span<const std::vector<std::size_t>> candidates, std::span<const double> taus,
-                                   const collision_window& window, bool reference) {
+                                   const collision_window& window, bool reference, proof_steps stepping) {
   std::vector<forecast_obstacle> those;
   std::vector<double> those_tau;
   for (std::size_t i = 0; i < taus.size(); ++i) {
@@ -71,9 +71,9 @@ bool verified_under_every_forecast(const ego_state& ego, const maneuver& u, std:
       those_tau.push_back(taus[i]);
     }
     if (those.empty()) continue;
-    const bool free = reference
-                          ? verified_collision_free_reference(ego, u, those, those_tau, window, verification_resolution)
-                          : verified_collision_free(ego, u, those, those_tau, window, verification_resolution);
+    const bool free =
+        reference ? verified_collision_free_reference(ego, u, those, those_tau, window, verification_resolution, stepping)
+                  : verified_collision_free(ego, u, those, those_tau, window, verification_resolution, stepping);
     if (!free) return false;
   }
   return true;
@@ -775,18 +775,28 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // nominal maneuver first) passing `verify`: collision-free in continuous time, not only at the
   // sample times, since a minimal-effort choice lies at the edge of the safe set, where a corner can
   // clip between samples.
-  const auto choose = [&](const sample_mask& unsafe, family f, std::function<bool(const maneuver&)> verify) {
+  // The choice of spec §8 with every candidate proven in continuous time (docs/method.md §4.5): by
+  // the speed bound first, which keeps a few centimetres more than the margin from the forecasts;
+  // only when no candidate passes, again with the translation bound, which proves passes down to
+  // the margin, before the step is a near-crash.
+  const auto choose = [&](const sample_mask& unsafe, family f,
+                          const std::function<bool(const maneuver&, proof_steps)>& verify) {
     choice_input choice;
     choice.samples = &samples;
     choice.colliding = &unsafe;
     choice.selected_family = f;
     choice.nominal = nominal;
-    choice.verify = std::move(verify);
-    choice.nominal_safe = choice.verify(nominal);
     choice.initial_speed = ego.speed;
     choice.weights = config.effort;
     choice.urgent_steering = config.urgent_steering;
-    return choose_maneuver(choice);
+    std::optional<maneuver_decision> decision;
+    for (const proof_steps stepping : {proof_steps::speed_bound, proof_steps::translation_bound}) {
+      choice.verify = [&verify, stepping](const maneuver& u) { return verify(u, stepping); };
+      choice.nominal_safe = choice.verify(nominal);
+      decision = choose_maneuver(choice);
+      if (decision) break;
+    }
+    return decision;
   };
 
   // The robust policy (docs/method.md, "The robust policy"): the maneuvers safe with every obstacle
@@ -808,8 +818,9 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     const sample_mask robust_colliding = evaluate.colliding(every);
     const maneuverability_pair mi = evaluate.indices(every);
     const family robust_family = select_family(mi.brake, mi.accelerate);
-    if (const auto decision = choose(robust_colliding, robust_family, [&](const maneuver& u) {
-          return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference) &&
+    if (const auto decision = choose(robust_colliding, robust_family, [&](const maneuver& u, proof_steps stepping) {
+          return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference,
+                                               stepping) &&
                  on_road(u);
         })) {
       robust_decided = true;
@@ -896,10 +907,11 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     // The maneuver (spec §8).
     std::vector<double> assigned_tau(n);
     for (std::size_t j = 0; j < n; ++j) assigned_tau[j] = taus[assignment[j]];
-    if (const auto decision = choose(colliding, result.selected_family, [&](const maneuver& u) {
-          return (options.reference
-                      ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window, verification_resolution)
-                      : verified_collision_free(ego, u, relevant, assigned_tau, window, verification_resolution)) &&
+    if (const auto decision = choose(colliding, result.selected_family, [&](const maneuver& u, proof_steps stepping) {
+          return (options.reference ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window,
+                                                                        verification_resolution, stepping)
+                                    : verified_collision_free(ego, u, relevant, assigned_tau, window,
+                                                              verification_resolution, stepping)) &&
                  on_road(u);
         })) {
       result.command = decision->command;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <limits>
 #include <numbers>
 
 namespace mm {
@@ -93,6 +94,83 @@ TEST(collision, a_proof_whose_last_step_is_cut_short_by_the_window_s_end_is_not_
       forecast_obstacle{{{{-1.0, 0.9 + 0.35 + 1e-3}, 0.0}, 1.5, 0.0}, disc{0.35}}};
   EXPECT_FALSE(verified_collision_free(stopped, {0.0, 0.0}, grazing, taus, window, 1e-3));
   EXPECT_FALSE(verified_collision_free_reference(stopped, {0.0, 0.0}, grazing, taus, window, 1e-3));
+}
+
+TEST(collision, the_translation_bound_proves_a_pass_alongside_that_the_speed_bound_cannot) {
+  // The walker 1 mm outside the margin, walking along the stopped car: the speed bound's steps are
+  // 1 mm / 1.5 m/s, below the resolution; the two go straight (no turn, no acceleration), so the
+  // translation bound is exact and proves the rest of the window in one step.
+  const ego_state stopped = ego_east(0.0);
+  const collision_window window{1.0, 3.0, 0.05, 0.3};
+  const std::array<forecast_obstacle, 1> alongside{
+      forecast_obstacle{{{{-4.0, 0.9 + 0.35 + 0.3 + 1e-3}, 0.0}, 1.5, 0.0}, disc{0.35}}};
+  const std::array<double, 1> taus{0.0};
+  for (const bool reference : {false, true}) {
+    const auto proven = [&](proof_steps stepping) {
+      return reference ? verified_collision_free_reference(stopped, {0.0, 0.0}, alongside, taus, window, 1e-3, stepping)
+                       : verified_collision_free(stopped, {0.0, 0.0}, alongside, taus, window, 1e-3, stepping);
+    };
+    EXPECT_FALSE(proven(proof_steps::speed_bound)) << "reference " << reference;
+    EXPECT_TRUE(proven(proof_steps::translation_bound)) << "reference " << reference;
+  }
+  // 1 mm inside the margin instead: refused by both.
+  const std::array<forecast_obstacle, 1> inside{
+      forecast_obstacle{{{{-4.0, 0.9 + 0.35 + 0.3 - 1e-3}, 0.0}, 1.5, 0.0}, disc{0.35}}};
+  EXPECT_FALSE(verified_collision_free(stopped, {0.0, 0.0}, inside, taus, window, 1e-3, proof_steps::translation_bound));
+  // A walker turning towards the car as it passes 2 cm outside the margin, at 0.5 rad/s for the
+  // whole window: its turn and acceleration widen the bound, and the proof must not pass the
+  // contact it heads into.
+  const std::array<forecast_obstacle, 1> turning_in{
+      forecast_obstacle{{{{-4.0, 0.9 + 0.35 + 0.3 + 0.02}, 0.0}, 1.5, -0.5}, disc{0.35}}};
+  const std::array<double, 1> whole_window{3.0};
+  EXPECT_FALSE(verified_collision_free(stopped, {0.0, 0.0}, turning_in, whole_window, window, 1e-3,
+                                       proof_steps::translation_bound));
+  EXPECT_FALSE(verified_collision_free_reference(stopped, {0.0, 0.0}, turning_in, whole_window, window, 1e-3,
+                                                 proof_steps::translation_bound));
+}
+
+TEST(collision, the_translation_bound_catches_the_rear_corner_of_a_turning_ego_swinging_into_a_parked_car) {
+  // The ego turns left at 10 m/s (κ = 0.05 1/m) past a car parked on its right: while its centre
+  // curves away, its rear right corner first swings right, by about 13 cm over 0.2 s. The parked car
+  // is placed so that the corner comes 0.1 mm inside the margin for a few milliseconds: a bound
+  // without the body's turn (the translation alone) would step over it.
+  const ego_state ego = ego_east(10.0);
+  const maneuver left{0.0, 0.05};
+  const collision_window window{1.0, 3.0, 0.05, 0.3};
+  const std::array<double, 1> taus{0.0};
+  const auto parked_at = [](double y) {
+    return std::array<forecast_obstacle, 1>{forecast_obstacle{{{{-1.0, y}, 0.0}, 0.0, 0.0}, rectangle{}}};
+  };
+  // The smallest clearance with the parked car's centre at y = −3 m, every 10 µs over the first second.
+  double smallest = std::numeric_limits<double>::infinity();
+  for (int k = 0; k <= 100000; ++k) {
+    const pose at = maneuver_pose(ego.pose, ego.speed, left, 1e-5 * k, window.horizon, ego.limits.speed_cap);
+    smallest = std::min(smallest, signed_distance(place(ego.shape, at), place(rectangle{}, pose{{-1.0, -3.0}, 0.0})) -
+                                      window.margin);
+  }
+  const std::array<forecast_obstacle, 1> grazed = parked_at(-3.0 + smallest + 1e-4);
+  const std::array<forecast_obstacle, 1> missed = parked_at(-3.0 + smallest - 1e-2);
+  for (const proof_steps stepping : {proof_steps::speed_bound, proof_steps::translation_bound}) {
+    EXPECT_FALSE(verified_collision_free(ego, left, grazed, taus, window, 1e-3, stepping));
+    EXPECT_FALSE(verified_collision_free_reference(ego, left, grazed, taus, window, 1e-3, stepping));
+  }
+  // 1 cm clear of the margin: the speed bound's steps would be 1 cm / L, about 0.9 ms, and fail;
+  // the translation bound proves it.
+  EXPECT_FALSE(verified_collision_free(ego, left, missed, taus, window, 1e-3, proof_steps::speed_bound));
+  EXPECT_TRUE(verified_collision_free(ego, left, missed, taus, window, 1e-3, proof_steps::translation_bound));
+  EXPECT_TRUE(verified_collision_free_reference(ego, left, missed, taus, window, 1e-3, proof_steps::translation_bound));
+}
+
+TEST(collision, the_translation_bound_still_catches_a_contact_between_sample_times) {
+  // The walker of `verification_catches_a_contact_between_sample_times`, crossing at 20 m/s.
+  const ego_state stopped = ego_east(0.0);
+  const collision_window coarse{1.0, 3.0, 0.2, 0.0};
+  const std::array<forecast_obstacle, 1> fast_walker{forecast_obstacle{{{{2.55, 2.0}, -pi / 2.0}, 20.0, 0.0}, disc{0.35}}};
+  const std::array<double, 1> taus{0.0};
+  EXPECT_FALSE(verified_collision_free(stopped, {0.0, 0.0}, fast_walker, taus, coarse, 1e-3,
+                                       proof_steps::translation_bound));
+  EXPECT_FALSE(verified_collision_free_reference(stopped, {0.0, 0.0}, fast_walker, taus, coarse, 1e-3,
+                                                 proof_steps::translation_bound));
 }
 
 TEST(collision, tunneling_step_is_the_smallest_dimension_over_the_largest_relative_speed) {

@@ -78,10 +78,12 @@ void time_fields(const mm::plan_input& input, const mm::plan_result& r, int coun
 /// The command's continuous-time proof (`mm::verified_collision_free` at
 /// `mm::command_proof_resolution`, docs/method.md §4.5: the ADJ and constant policies' proof,
 /// without the road constraint's) on every sample that the sets of the plan of `input` call safe
-/// under its selected forecast times: prints how many there are and how many are proven, and for
-/// each relevant obstacle that some are not proven against, how many and their closest pass outside
-/// the margin [m] (the least signed distance − margin, sampled every 0.1 ms over [0, T_c]). When the
-/// sets have room but the step is a near-crash, this shows the proof's resolution at work.
+/// under its selected forecast times: prints how many there are, how many the speed bound proves
+/// (the planner's first try) and how many the translation bound does (its second, before a
+/// near-crash), and for each relevant obstacle that some are proven against by neither, how many
+/// and their closest pass outside the margin [m] (the least signed distance − margin, sampled every
+/// 0.1 ms over [0, T_c]). When the sets have room but the step is a near-crash, this shows the
+/// proof's resolution at work.
 void prove_safe_samples(mm::plan_input input) {
   input.config.record_samples = true;
   const mm::plan_result r = mm::plan(input);
@@ -99,7 +101,8 @@ void prove_safe_samples(mm::plan_input input) {
   });
   const mm::sample_snapshot& samples = *r.samples;
   std::size_t safe = 0;
-  std::size_t proven = 0;
+  std::size_t by_speed = 0;
+  std::size_t by_translation = 0;
   std::vector<std::size_t> failed(obstacles.size(), 0);
   std::vector<double> closest(obstacles.size(), std::numeric_limits<double>::infinity());
   const auto steps = static_cast<int>(std::llround(c.collision_window / 1e-4));
@@ -107,15 +110,18 @@ void prove_safe_samples(mm::plan_input input) {
     if (!samples.safe_selected[m]) continue;
     ++safe;
     const mm::maneuver& u = samples.maneuvers[m];
-    if (mm::verified_collision_free(input.ego, u, obstacles, taus, window, mm::command_proof_resolution)) {
-      ++proven;
+    const auto proven = [&](std::span<const mm::forecast_obstacle> those, std::span<const double> their_taus,
+                            mm::proof_steps stepping) {
+      return mm::verified_collision_free(input.ego, u, those, their_taus, window, mm::command_proof_resolution,
+                                         stepping);
+    };
+    by_speed += proven(obstacles, taus, mm::proof_steps::speed_bound) ? 1 : 0;
+    if (proven(obstacles, taus, mm::proof_steps::translation_bound)) {
+      ++by_translation;
       continue;
     }
     for (std::size_t k = 0; k < obstacles.size(); ++k) {
-      if (mm::verified_collision_free(input.ego, u, std::span(&obstacles[k], 1), std::span(&taus[k], 1), window,
-                                      mm::command_proof_resolution)) {
-        continue;
-      }
+      if (proven(std::span(&obstacles[k], 1), std::span(&taus[k], 1), mm::proof_steps::translation_bound)) continue;
       ++failed[k];
       for (int i = 0; i <= steps; ++i) {
         const double t = std::min(i * 1e-4, c.collision_window);
@@ -128,7 +134,7 @@ void prove_safe_samples(mm::plan_input input) {
       }
     }
   }
-  std::printf("proof safe_by_sets %zu proven %zu\n", safe, proven);
+  std::printf("proof safe_by_sets %zu speed_bound %zu translation_bound %zu\n", safe, by_speed, by_translation);
   for (std::size_t k = 0; k < obstacles.size(); ++k) {
     if (failed[k] > 0) {
       std::printf("proof_fails obstacle %u samples %zu closest %.4f\n", static_cast<unsigned>(ids[k]), failed[k],
@@ -195,8 +201,9 @@ int main(int argc, char** argv) {
   bool proofs = false;
   app.add_flag("--proofs", proofs,
                "Also run the command's continuous-time proof on every sample the fast planner's sets call safe "
-               "under its selected forecast times, and print how many are proven and, per obstacle, how many "
-               "are not and their closest pass outside the margin [m]");
+               "under its selected forecast times, and print how many the speed bound proves (the planner's "
+               "first try), how many the translation bound does (its second) and, per obstacle, how many neither "
+               "does and their closest pass outside the margin [m]");
   return mm::tool_cli::run(app, argc, argv,
                            [&] { return replan(path, repeat, fields, keep_planner, reference, proofs); });
 }

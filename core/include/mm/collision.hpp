@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -66,6 +67,9 @@ inline constexpr double smallest_collision_time_step = 1e-4;
 /// relative point speed L times this (L × 1 ms: 7 mm at L = 7 m/s, 2–3 cm at 20–30 m/s) is not
 /// proven safe.
 inline constexpr double command_proof_resolution = 1e-3;
+
+/// The longest step the proof's translation bound tries [s] (`verified_collision_free`).
+inline constexpr double longest_translated_step = 0.025;
 
 /// The first sample time at which the ego executing `u` overlaps one of `obstacles`, obstacle j
 /// following its forecast with forecast time `forecast_times[j]`; `no_collision` if none (spec §5).
@@ -200,25 +204,45 @@ double refined_minimum(std::span<const double> times, std::size_t k, At&& at, do
   return fx;
 }
 
+/// How the continuous-time proof of a command steps (`verified_collision_free`, docs/method.md §4.5).
+enum class proof_steps : std::uint8_t {
+  /// c / L only: a command passing within about L × resolution of the margin (1–3 cm at 1 ms) is
+  /// not proven, which keeps that much more from the forecasts where it is.
+  speed_bound,
+  /// The longer of c / L and the translation bound: passes side by side are proven down to the
+  /// margin. The planner's second try, before a near-crash.
+  translation_bound,
+};
+
 /// True when the ego executing `u` provably keeps more than the margin from every obstacle
 /// (obstacle j forecast with `forecast_times[j]`) at every time in [0, T_c], not only at sample
-/// times. Conservative advancement: the signed distance changes no faster than L, the largest
-/// relative speed of any two footprint points, so from a clearance c > 0 at time t no contact is
-/// possible before t + c/L. Stepping so across the window proves it; a step shorter than
-/// `resolution` [s] (a clearance below L·resolution) counts as not proven, unless it reaches T_c.
+/// times. Conservative advancement: each step is proven free of contact by
+/// - the speed bound: the signed distance changes no faster than L, the largest relative speed of
+///   any two footprint points, so from a clearance c > 0 at time t no contact is possible before
+///   t + c/L;
+/// - with `proof_steps::translation_bound`, also (the longer step of the two) the translation
+///   bound: over [t, t + h] each footprint stays within its placement at t moved at its velocity at
+///   t, widened by R·ω·s + A·s²/2 (R its bounding radius, ω and A bounds of its turn rate and of its
+///   acceleration), so no contact is possible before t + h when the two moved placements keep more
+///   than the margin plus both widenings over [0, h] (a translation, in closed form); tried for
+///   h = min(`longest_translated_step`, T_c − t)·2^−k above c/L. Bodies passing side by side, whose
+///   distance changes far slower than L, are so proven in steps of about c/(R_e ω_e + R_o ω_o)
+///   instead of c/L; two that go straight, in one step.
+/// Stepping so across the window proves it; a step shorter than `resolution` [s] counts as not
+/// proven, unless it reaches T_c.
 ///
 /// Obstacles whose bounding discs are so far apart from the ego's that their clearance can neither
 /// be ≤ 0 nor shorten the step are not asked for their distance: equal to
 /// `verified_collision_free_reference`, which asks every obstacle at every step.
 bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
                              std::span<const double> forecast_times, const collision_window& window,
-                             double resolution = 1e-3);
+                             double resolution = 1e-3, proof_steps steps = proof_steps::speed_bound);
 
 /// The reference for `verified_collision_free`: the signed distance of every obstacle at every step.
 bool verified_collision_free_reference(const ego_state& ego, const maneuver& u,
                                        std::span<const forecast_obstacle> obstacles,
                                        std::span<const double> forecast_times, const collision_window& window,
-                                       double resolution = 1e-3);
+                                       double resolution = 1e-3, proof_steps steps = proof_steps::speed_bound);
 
 /// Time resolution of `time_to_collision` [s].
 inline constexpr double time_to_collision_resolution = 1e-4;
