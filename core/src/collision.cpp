@@ -227,7 +227,7 @@ ego_motion_at ego_motion(const ego_state& ego, const maneuver& u, const pose& at
   return {velocity, turn, std::abs(u.acceleration) + turn * largest};
 }
 
-/// The proof's second bound (docs/method.md §4.5): over [t, t + h] a footprint stays within its
+/// The proof's translation bound (`proof_steps::translation_bound`, docs/method.md §4.5): over [t, t + h] a footprint stays within its
 /// placement at t moved at its reference point's velocity at t, widened by R·ω·s + A·s²/2 at t + s
 /// (R its bounding radius, ω and A bounds of its turn rate and of its reference point's
 /// acceleration), so the signed distance at t + s is at least that of the two moved placements less
@@ -236,9 +236,9 @@ ego_motion_at ego_motion(const ego_state& ego, const maneuver& u, const pose& at
 /// smallest signed distance of the moved placements over [0, h] (closed form) exceeds the margin
 /// by more than ρ·h + A·h²/2; 0 when there is none.
 double translated_step(const placed_footprint& ego, const ego_motion_at& ego_moves, double ego_radius,
-                              const placed_footprint& obstacle, const forecast_obstacle& o, double forecast_time,
-                              double obstacle_radius, double heading, double t, double margin,
-                              double shorter_than_this, double remaining) {
+                       const placed_footprint& obstacle, const forecast_obstacle& o, double forecast_time,
+                       double obstacle_radius, double heading, double t, double margin, double shorter_than_this,
+                       double remaining) {
   const bool turning = t < forecast_time;
   const double omega = turning ? std::abs(o.motion.yaw_rate) : 0.0;
   const vec2 obstacle_velocity{o.motion.speed * std::cos(heading), o.motion.speed * std::sin(heading)};
@@ -351,9 +351,8 @@ bool verified_collision_free_reference(const ego_state& ego, const maneuver& u, 
       if (rate <= 0.0) continue;
       // The speed bound c / L; the translation bound only where it could give a longer step.
       const double longer = stepping == proof_steps::translation_bound && clearance / rate < step
-                                ? translated_step(e, ego_moves, ego_radius, placed, o, forecast_times[j],
-                                                         radius, at.heading, t, window.margin, clearance / rate,
-                                                         remaining)
+                                ? translated_step(e, ego_moves, ego_radius, placed, o, forecast_times[j], radius,
+                                                  at.heading, t, window.margin, clearance / rate, remaining)
                                 : 0.0;
       step = std::min(step, std::max(clearance / rate, longer));
     }

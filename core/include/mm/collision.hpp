@@ -63,9 +63,10 @@ double tunneling_time_step(const ego_state& ego, const forecast_obstacle& obstac
 inline constexpr double smallest_collision_time_step = 1e-4;
 
 /// Smallest step of the planner's continuous-time proof that a command is collision-free [s]
-/// (`verified_collision_free`, docs/method.md §4.5): a command passing closer than the largest
-/// relative point speed L times this (L × 1 ms: 7 mm at L = 7 m/s, 2–3 cm at 20–30 m/s) is not
-/// proven safe.
+/// (`verified_collision_free`, docs/method.md §4.5): by the speed bound, a command passing closer
+/// than the largest relative point speed L times this (L × 1 ms: 7 mm at L = 7 m/s, 2–3 cm at
+/// 20–30 m/s) is not proven safe; the translation bound, the planner's second try, proves such
+/// passes where the two bodies' distance changes slowly (side by side).
 inline constexpr double command_proof_resolution = 1e-3;
 
 /// The longest step the proof's translation bound tries [s] (`verified_collision_free`).
