@@ -774,11 +774,9 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // Spec §8 rules 1–3 on the samples outside `unsafe`, family `f` first, each candidate (the
   // nominal maneuver first) passing `verify`: collision-free in continuous time, not only at the
   // sample times, since a minimal-effort choice lies at the edge of the safe set, where a corner can
-  // clip between samples.
-  // The choice of spec §8 with every candidate proven in continuous time (docs/method.md §4.5): by
-  // the speed bound first, which keeps a few centimetres more than the margin from the forecasts;
-  // only when no candidate passes, again with the translation bound, which proves passes down to
-  // the margin, before the step is a near-crash.
+  // clip between samples (docs/method.md §4.5). Proven by the speed bound first, which keeps a few
+  // centimetres more than the margin from the forecasts; only when no candidate passes, again with
+  // the translation bound, which proves passes down to the margin; nothing when neither does.
   const auto choose = [&](const sample_mask& unsafe, family f,
                           const std::function<bool(const maneuver&, proof_steps)>& verify) {
     choice_input choice;
