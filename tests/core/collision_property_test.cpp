@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <random>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mm/collision_sets.hpp"
 #include "mm/footprint.hpp"
@@ -18,6 +20,18 @@
 
 namespace mm {
 namespace {
+
+/// The obstacles of `in` as the planner estimates them, each with its own forecast time
+/// 0.125 s × `forecast(rng)`.
+std::pair<std::vector<forecast_obstacle>, std::vector<double>> forecast_randomly(
+    const plan_input& in, std::mt19937_64& rng, std::uniform_int_distribution<int>& forecast) {
+  std::pair<std::vector<forecast_obstacle>, std::vector<double>> scene;
+  for (const obstacle_track& track : in.obstacles) {
+    scene.first.push_back({estimate_motion(track, in.config.history_window, in.time), track.shape});
+    scene.second.push_back(0.125 * forecast(rng));
+  }
+  return scene;
+}
 
 TEST(collision, time_to_collision_is_never_after_a_contact_of_its_reference_and_always_at_one) {
   // The reference scans the window every 10⁻⁴ s: the conservative advancement never passes an
@@ -65,12 +79,7 @@ TEST(collision, first_collision_time_equals_its_reference_bit_for_bit_on_random_
     const plan_input in = testing::random_scene(rng, {1 + trial % 3, trial % 2 == 1});
     const collision_window window{in.config.displacement_horizon, in.config.collision_window,
                                   trial % 5 == 0 ? 0.02 : 0.05, trial % 3 == 1 ? 0.4 : 0.0};
-    std::vector<forecast_obstacle> obstacles;
-    std::vector<double> taus;
-    for (const obstacle_track& track : in.obstacles) {
-      obstacles.push_back({estimate_motion(track, in.config.history_window, in.time), track.shape});
-      taus.push_back(0.125 * forecast(rng));
-    }
+    const auto [obstacles, taus] = forecast_randomly(in, rng, forecast);
     std::vector<maneuver> maneuvers;
     for (int m = 0; m < 8; ++m) maneuvers.push_back({m % 3 == 0 ? 0.0 : acceleration(rng), m % 4 == 0 ? 0.0 : curvature(rng)});
     const std::vector<double> all = first_collision_times(in.ego, maneuvers, obstacles, taus, window);
@@ -104,12 +113,7 @@ TEST(collision, verified_collision_free_equals_its_reference_on_random_scenes) {
                                   trial % 3 == 1 ? 0.4 : 0.0};
     const double resolution = trial % 4 == 0 ? 0.02 : 1e-3;
     const proof_steps stepping = trial % 5 < 2 ? proof_steps::translation_bound : proof_steps::speed_bound;
-    std::vector<forecast_obstacle> obstacles;
-    std::vector<double> taus;
-    for (const obstacle_track& track : in.obstacles) {
-      obstacles.push_back({estimate_motion(track, in.config.history_window, in.time), track.shape});
-      taus.push_back(0.125 * forecast(rng));
-    }
+    const auto [obstacles, taus] = forecast_randomly(in, rng, forecast);
     for (int m = 0; m < 8; ++m) {
       const maneuver u{m % 3 == 0 ? 0.0 : acceleration(rng), m % 4 == 0 ? 0.0 : curvature(rng)};
       const bool reference =
@@ -141,12 +145,7 @@ TEST(collision, what_the_translation_bound_proves_keeps_the_margin_at_every_mill
     const plan_input in = testing::random_scene(rng, {1 + trial % 3, trial % 2 == 1});
     const collision_window window{in.config.displacement_horizon, in.config.collision_window, 0.05,
                                   trial % 3 == 1 ? 0.4 : 0.0};
-    std::vector<forecast_obstacle> obstacles;
-    std::vector<double> taus;
-    for (const obstacle_track& track : in.obstacles) {
-      obstacles.push_back({estimate_motion(track, in.config.history_window, in.time), track.shape});
-      taus.push_back(0.125 * forecast(rng));
-    }
+    const auto [obstacles, taus] = forecast_randomly(in, rng, forecast);
     for (int m = 0; m < 8; ++m) {
       const maneuver u{m % 3 == 0 ? 0.0 : acceleration(rng), m % 4 == 0 ? 0.0 : curvature(rng)};
       const bool by_speed = verified_collision_free(in.ego, u, obstacles, taus, window, 0.02, proof_steps::speed_bound);
