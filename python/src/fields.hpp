@@ -30,11 +30,11 @@ void set_fields(py::handle self, const py::kwargs& fields);
 /// `type_name(field=repr(value), ...)` over every field (every writable one with `writable_only`).
 std::string fields_repr(py::handle self, bool writable_only = false);
 
-/// Gives a bound value type a keyword constructor (`ego_state(speed=8.3)`), `__repr__` and
-/// `__eq__` by fields (values compare equal when every field does), and pickling by fields (so that
-/// values can be sent to other processes: `multiprocessing`, `concurrent.futures`).
+/// Gives a bound value type a keyword constructor (`ego_state(speed=8.3)`), and `__repr__` and
+/// `__eq__` by fields (values compare equal when every field does). For the value types that hold a
+/// path (the scenario's agents), which do not pickle.
 template <class T, class... Options>
-py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
+py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
   c.def(py::init<>());
   c.def(py::init([](const py::kwargs& fields) {
           py::object value = py::cast(T{});
@@ -51,6 +51,14 @@ py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
     return true;
   });
   c.attr("__hash__") = py::none();
+  return c;
+}
+
+/// `with_keyword_fields`, and pickling by fields (so that values can be sent to other processes:
+/// `multiprocessing`, `concurrent.futures`).
+template <class T, class... Options>
+py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
+  with_keyword_fields(c);
   c.def(py::pickle(
       [](py::handle self) {
         py::dict state;

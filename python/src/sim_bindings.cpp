@@ -15,11 +15,10 @@
 
 #include "bindings.hpp"
 #include "fields.hpp"
+#include "scenario_bindings.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/scenario_file/loader.hpp"
 #include "mm/sim/simulation.hpp"
-
-PYBIND11_MAKE_OPAQUE(std::vector<mm::sim::planning_vehicle>)
 
 namespace mm::python {
 
@@ -169,52 +168,6 @@ void bind_scenarios(py::module_& m) {
       PyErr_SetObject(error->ptr(), instance.ptr());
     }
   });
-
-  py::class_<sim::planning_vehicle>(m, "planning_vehicle",
-                                    "A vehicle that follows its path and avoids the others with the planner.")
-      .def_readwrite("name", &sim::planning_vehicle::name)
-      .def_readwrite("start_time", &sim::planning_vehicle::start_time, "[s]")
-      .def_readwrite("initial_speed", &sim::planning_vehicle::initial_speed, "[m/s]")
-      .def_readwrite("desired_speed", &sim::planning_vehicle::desired_speed, "[m/s]")
-      .def_readwrite("shape", &sim::planning_vehicle::shape, "[m]")
-      .def_readwrite("limits", &sim::planning_vehicle::limits, "spec §3")
-      .def_readwrite("planner", &sim::planning_vehicle::planner, "its planner_config")
-      .def_readwrite("avoidance", &sim::planning_vehicle::avoidance, "False: u_nom without planning")
-      .def_readwrite("planning_period", &sim::planning_vehicle::planning_period, "plan every k-th step")
-      .def("path_points", [](const sim::planning_vehicle& v, double spacing) {
-        const double length = v.path.length();
-        if (!(spacing > 0.0) || !std::isfinite(spacing) || length / spacing > 1e6) {
-          throw py::value_error("spacing = " + py::repr(py::float_(spacing)).cast<std::string>() +
-                                ": expected a positive number of metres giving at most a million points");
-        }
-        std::vector<vec2> points;
-        const auto pieces = std::max<std::size_t>(static_cast<std::size_t>(std::ceil(length / spacing)), 1);
-        for (std::size_t k = 0; k <= pieces; ++k) {
-          points.push_back(v.path.at(length * static_cast<double>(k) / static_cast<double>(pieces)).position);
-        }
-        return points_of(points);
-      }, py::arg("spacing") = 0.5, "Its reference path at about `spacing` [m], shape (points, 2) [m]")
-      .def("__repr__", [](py::handle self) { return fields_repr(self); });
-  py::bind_vector<std::vector<sim::planning_vehicle>>(m, "planning_vehicle_list");
-  py::implicitly_convertible<py::list, std::vector<sim::planning_vehicle>>();
-
-  py::class_<sim::scenario>(m, "scenario", "Everything a run needs (change it before the run starts).")
-      .def_readwrite("name", &sim::scenario::name)
-      .def_readwrite("description", &sim::scenario::description)
-      .def_readwrite("duration", &sim::scenario::duration, "[s]")
-      .def_readwrite("time_step", &sim::scenario::time_step, "dt [s]")
-      .def_readwrite("seed", &sim::scenario::seed, "seeds the sensor noise")
-      .def_readwrite("planning_vehicles", &sim::scenario::planning_vehicles)
-      .def_property_readonly("drivable_area", [](const sim::scenario& s) -> std::optional<std::shared_ptr<drivable_area>> {
-        if (s.drivable_area.empty()) return std::nullopt;
-        return std::make_shared<drivable_area>(s.drivable_area);
-      }, "the road constraint of every planning vehicle (spec §5), or None")
-      .def("validation_error", [](const sim::scenario& s) { return sim::validation_error(s); },
-           "The first problem, naming the agent and the field, or None.")
-      .def("__repr__", [](const sim::scenario& s) {
-        return "scenario(name=" + py::repr(py::str(s.name)).cast<std::string>() + ", " +
-               std::to_string(s.planning_vehicles.size()) + " planning vehicles)";
-      });
 
   py::class_<scenario_file::parameter>(m, "parameter", "A named number of the file's `parameters:`.")
       .def_readonly("name", &scenario_file::parameter::name)
@@ -521,6 +474,7 @@ void bind_simulation(py::module_& m) {
 }  // namespace
 
 void bind_sim(py::module_& m) {
+  bind_scenario_values(m);
   bind_scenarios(m);
   bind_simulation(m);
 }

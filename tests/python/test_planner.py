@@ -132,6 +132,22 @@ def test_obstacles_and_observations_appended_in_place_are_planned_on():
     assert result.mi_brake_selected < 1.0
 
 
+def test_fields_that_are_classes_change_in_place_and_other_lists_are_copies():
+    scene = mm.plan_input(ego=mm.ego_state(speed=10.0))
+    scene.ego.speed = 12.0
+    assert scene.ego.speed == 12.0
+    scene.obstacles.append(mm.obstacle_track(id=7, shape=mm.rectangle(4.0, 2.0)))
+    footprint = scene.obstacles[0].shape  # the rectangle inside the footprint's variant
+    assert isinstance(footprint, mm.rectangle)
+    footprint.length = 3.0
+    assert scene.obstacles[0].shape == mm.rectangle(3.0, 2.0)
+    polygon = mm.convex_polygon(vertices=[(0.0, 0.0), (1.0, 0.0), (0.0, 1.0)])
+    polygon.vertices.append(mm.vec2(1.0, 1.0))  # a copy
+    assert len(polygon.vertices) == 3
+    polygon.vertices = [mm.vec2(0.0, 0.0), mm.vec2(1.0, 0.0), mm.vec2(1.0, 1.0), mm.vec2(0.0, 1.0)]
+    assert len(polygon.vertices) == 4
+
+
 def test_an_obstacle_observed_once_needs_its_motion():
     scene = mm.plan_input(ego=mm.ego_state(speed=10.0))
     track = mm.obstacle_track(id=3, history=[mm.observation(0.0, mm.pose(15.0, 0.0, math.pi), 5.0)])

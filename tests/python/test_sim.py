@@ -1,9 +1,11 @@
 """The simulator from Python: a run gives what `maneuvermap run` writes, as arrays (docs/python.md)."""
 import concurrent.futures
 import csv
+import math
 import multiprocessing
 import pathlib
 import pickle
+import re
 import subprocess
 
 import numpy as np
@@ -141,6 +143,107 @@ def test_a_run_without_map_columns_makes_the_same_decisions_and_keeps_no_indices
     assert b.forecast_time.tobytes() == a.forecast_time.tobytes()
     assert b.mode.tobytes() == a.mode.tobytes()
     assert b.mi_brake.size == 0 and b.mi_accelerate.size == 0
+
+
+def s1_crossing_built_in_python():
+    """scenarios/s1-crossing.yaml at its defaults, written out in Python."""
+    kmh = 1.0 / 3.6  # the scenario files' factor
+    a_speed, b_speed = 40.0 * kmh, 36.0 * kmh
+    a = mm.sim.planning_vehicle(
+        name="A",
+        path=mm.sim.path(mm.pose((-60.0, 0.0), 0.0)).straight(160.0),
+        initial_speed=a_speed,
+        desired_speed=a_speed,
+        shape=mm.rectangle(4.5, 1.8),
+        planner=mm.planner_config(
+            policy=mm.forecast_policy.parse("adj"), safety_margin=0.3, displacement_horizon=1.0))
+    # The file's `meet`: B starts so that both reach the conflict point (0, 0) at once.
+    b_start = 60.0 / a_speed - 36.0 / b_speed
+    b = mm.sim.scripted_vehicle(
+        name="B",
+        motion=mm.sim.scripted_motion(
+            path=mm.sim.path(mm.pose((0.0, 36.0), math.radians(-90.0))).straight(136.0),
+            start_time=b_start,
+            speed=mm.sim.speed_profile.constant(b_speed)),
+        shape=mm.rectangle(4.5, 1.8))
+    return mm.sim.scenario(name="s1-crossing", duration=8.0, time_step=0.01, planning_vehicles=[a],
+                           scripted_vehicles=[b])
+
+
+def test_a_scenario_built_in_python_equals_its_file_and_runs_as_it_does():
+    built = s1_crossing_built_in_python()
+    loaded = mm.sim.load("s1-crossing").scenario
+    assert built.planning_vehicles == loaded.planning_vehicles
+    assert built.scripted_vehicles == loaded.scripted_vehicles
+    assert built.pedestrians == loaded.pedestrians == []
+    ours = mm.sim.run(built)
+    theirs = mm.sim.run("s1-crossing")
+    for name in ("times", "x", "y", "heading", "speed", "acceleration", "curvature", "status"):
+        assert getattr(ours, name).tobytes() == getattr(theirs, name).tobytes(), name
+    assert ours.map("A").mi_brake.tobytes() == theirs.map("A").mi_brake.tobytes()
+    # B a little faster (and so later, to meet A at the crossing) is the file's b_kmh = 40.
+    b = built.scripted_vehicles[0]
+    b.motion.speed = mm.sim.speed_profile.constant(40.0 / 3.6)
+    b.motion.start_time = 60.0 / (40.0 / 3.6) - 36.0 / (40.0 / 3.6)
+    assert built.scripted_vehicles == mm.sim.load("s1-crossing", set={"b_kmh": 40.0}).scenario.scripted_vehicles
+    faster = mm.sim.run(built)
+    assert faster.x.tobytes() == mm.sim.run("s1-crossing", set={"b_kmh": 40.0}).x.tobytes()
+    assert faster.x.tobytes() != ours.x.tobytes()
+
+
+def test_a_pedestrian_and_a_static_obstacle_added_in_python_take_part_in_the_run():
+    scenario = s1_crossing_built_in_python()
+    # A pedestrian walks toward A's road after the crossing and stops at its kerb for good; a cone
+    # stands in A's lane beyond it.
+    kerb = mm.sim.path(mm.pose((25.0, -8.0), math.pi / 2)).straight(16.0)
+    scenario.pedestrians.append(mm.sim.pedestrian(
+        name="P",
+        motion=mm.sim.scripted_motion(path=kerb, speed=mm.sim.speed_profile.constant(1.4),
+                                      stop=mm.sim.stop_rule(arc_length=5.5))))
+    scenario.static_obstacles = [
+        mm.sim.static_obstacle(name="cone", vertices=[(20.0, -0.5), (21.0, -0.5), (21.0, 0.5), (20.0, 0.5)])]
+    assert scenario.validation_error() is None
+    record = mm.sim.run(scenario)
+    assert [agent.name for agent in record.agents] == ["A", "B", "P", "cone"]
+    # The pedestrian stands at its stop from when it gets there: 5.5 m along, at (25, -2.5).
+    assert record.y[:, 2].max() == pytest.approx(-2.5)
+    assert (record.x[-1, 2], record.y[-1, 2], record.speed[-1, 2]) == pytest.approx((25.0, -2.5, 0.0))
+    # The cone stands at the mean of its vertices, and A steers round it (without it, B is A's
+    # closest road user).
+    assert record.present[:, 3].all()
+    assert (record.x[:, 3] == 20.5).all() and (record.y[:, 3] == 0.0).all()
+    assert mm.sim.run("s1-crossing").metrics[0].closest_agent == "B"
+    assert record.metrics[0].closest_agent == "cone"
+    assert not record.metrics[0].crash and len(record.crashes) == 0
+    closest = record.metrics[0].min_dist_m
+    assert closest is not None and closest > 0.3
+
+
+def test_paths_built_in_python_and_a_bad_agent_give_clear_errors():
+    corner = mm.sim.path.polyline([(0.0, 0.0), (10.0, 0.0), (10.0, 10.0)])
+    assert corner.length == 20.0
+    assert corner.points(spacing=5.0).tolist() == [[0, 0], [5, 0], [10, 0], [10, 5], [10, 10]]
+    half_circle = mm.sim.path.circular_arc((0.0, 0.0), 10.0, 0.0, math.pi)
+    assert half_circle.length == pytest.approx(10.0 * math.pi)
+    end = half_circle.end_pose
+    assert (end.x, end.y, end.heading) == pytest.approx((-10.0, 0.0, -math.pi / 2))
+    turn = mm.sim.path(mm.pose((0.0, 0.0), 0.0)).straight(5.0).turn(10.0, math.pi / 2)
+    assert turn.at(5.0 + 10.0 * math.pi / 4).curvature == pytest.approx(0.1)
+    assert (turn.end_pose.x, turn.end_pose.y, turn.end_pose.heading) == pytest.approx((15.0, 10.0, math.pi / 2))
+    with pytest.raises(ValueError, match="straight length = -1"):
+        mm.sim.path(mm.pose((0.0, 0.0), 0.0)).straight(-1.0)
+    with pytest.raises(ValueError, match="empty"):
+        mm.sim.path().at(0.0)
+    with pytest.raises(TypeError, match="scripted_vehicle has no field 'nmae'; its fields are: name, motion"):
+        mm.sim.scripted_vehicle(nmae="B")
+    scenario = s1_crossing_built_in_python()
+    scenario.scripted_vehicles[0].motion.speed = mm.sim.speed_profile.constant(-1.0)
+    message = 'scripted_vehicles[0] "B": motion.speed.knots[0].speed = -1: expected a finite number ≥ 0 [m/s]'
+    assert scenario.validation_error() == message
+    with pytest.raises(ValueError, match=re.escape(message)):
+        mm.sim.run(scenario)
+    with pytest.raises(ValueError, match=re.escape(message)):
+        mm.sim.simulation(scenario)
 
 
 def test_the_scene_geometry_comes_with_the_loaded_scenario():

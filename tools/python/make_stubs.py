@@ -39,8 +39,9 @@ CONVERTIBLE = {
     f"List[List[{PACKAGE}.vec2]]":
         f"Sequence[Sequence[Union[{PACKAGE}.vec2, Tuple[float, float], Sequence[float]]]]",
     f"List[Tuple[int, int]]": "Sequence[Tuple[int, int]]",
-    f"{PACKAGE}.sim.planning_vehicle_list":
-        f"Union[{PACKAGE}.sim.planning_vehicle_list, Sequence[{PACKAGE}.sim.planning_vehicle]]",
+    f"List[{PACKAGE}.vec2]": f"Sequence[Union[{PACKAGE}.vec2, Tuple[float, float], Sequence[float]]]",
+    **{f"{PACKAGE}.sim.{kind}_list": f"Union[{PACKAGE}.sim.{kind}_list, Sequence[{PACKAGE}.sim.{kind}]]"
+       for kind in ("planning_vehicle", "scripted_vehicle", "pedestrian", "static_obstacle")},
 }
 # Parameters the bindings take as any object and sort out themselves (python/src/sim_bindings.cpp),
 # by (module, function, parameter): what they accept. Every entry must be used.

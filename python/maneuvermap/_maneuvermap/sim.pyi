@@ -117,6 +117,29 @@ class agent_status:
     @property
     def value(self) -> int: ...
 
+class before_start_behaviour:
+    """Where an agent is before its start time.
+
+    Members:
+
+      absent : not in the world: neither observed nor collidable
+
+      wait : standing at its start pose: observed and collidable
+    """
+    absent: ClassVar[before_start_behaviour]
+    wait: ClassVar[before_start_behaviour]
+    __members__: ClassVar[Dict[str, before_start_behaviour]]
+    def __init__(self, value: int) -> None: ...
+    def __eq__(self, other: object) -> bool: ...
+    def __ne__(self, other: object) -> bool: ...
+    def __hash__(self) -> int: ...
+    def __index__(self) -> int: ...
+    def __int__(self) -> int: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def value(self) -> int: ...
+
 def builtin_scenarios() -> List[str]:
     """The names of the built-in scenarios."""
     ...
@@ -145,6 +168,28 @@ class bypass_side:
     @property
     def value(self) -> int: ...
 
+class car_following_config:
+    """Keeping a distance to the road user ahead on the path (docs/simulator.md §5)."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __getstate__(self) -> Dict[str, Any]: ...
+    def __setstate__(self, arg0: Dict[str, Any]) -> None: ...
+    time_gap: float
+    """T [s] ≥ 0"""
+    jam_distance: float
+    """s0 [m] ≥ 0"""
+    corridor_half_width: float
+    """[m] > 0"""
+    max_heading_difference: float
+    """[rad] in [0, π]"""
+
 class crash_event:
     """An overlap of two agents, one of them a planning vehicle."""
     def __getstate__(self) -> Tuple[Any, ...]: ...
@@ -158,6 +203,32 @@ class crash_event:
     @property
     def second(self) -> int: ...
     def __repr__(self) -> str: ...
+
+class follower_config:
+    """The path follower that gives u_nom (spec §8; docs/simulator.md §3)."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __getstate__(self) -> Dict[str, Any]: ...
+    def __setstate__(self, arg0: Dict[str, Any]) -> None: ...
+    lookahead_time: float
+    """k_L [s] > 0"""
+    min_lookahead: float
+    """L_min [m] > 0"""
+    speed_gain: float
+    """k_v [1/s] > 0"""
+    comfortable_deceleration: float
+    """b [m/s²] > 0"""
+    curve_lateral_acceleration: Optional[float]
+    """a_lat [m/s²]; None: the vehicle's max_lateral_acceleration"""
+    car_following: Optional[car_following_config]
+    """None: off, as in spec §8"""
 
 def load(file_or_builtin: Union[str, os.PathLike[str]], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ...) -> loaded_scenario:
     """A built-in scenario by name or a scenario file (docs/scenario-format.md), with parameter overrides (`set={'a_kmh': 20}`), a forecast policy for every planning vehicle, a seed, and `on_roads` (its roads and roundabout lanes as the drivable area): as `maneuvermap run`. scenario_error (a ValueError) names the file, line, column and field of any problem."""
@@ -260,6 +331,146 @@ class parameter:
         ...
     def __repr__(self) -> str: ...
 
+class path:
+    """A path of straight lines and circular arcs, by arc length (docs/scenario-format.md's `path:`): mm.sim.path(mm.pose(x, y, heading)).straight(20.0).turn(15.0, math.pi / 2)."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None:
+        """The empty path (not drivable)."""
+        ...
+    @overload
+    def __init__(self, start: _core.pose) -> None:
+        """An empty path whose first segment starts at `start`."""
+        ...
+    @staticmethod
+    def polyline(points: Sequence[Union[_core.vec2, Tuple[float, float], Sequence[float]]]) -> path:
+        """Straight segments through `points` (at least 2, consecutive ones distinct) [m]."""
+        ...
+    @staticmethod
+    def circular_arc(center: Union[_core.vec2, Tuple[float, float], Sequence[float]], radius: float, start_angle: float, sweep: float) -> path:
+        """The arc of the circle of `radius` [m] about `center` from polar angle `start_angle` over `sweep` [rad], positive counter-clockwise."""
+        ...
+    def straight(self, length: float) -> path:
+        """Appends `length` [m] > 0 straight ahead; returns the path."""
+        ...
+    def turn(self, radius: float, angle: float) -> path:
+        """Appends an arc of `radius` [m] > 0 turning by `angle` [rad] (positive left); returns the path."""
+        ...
+    def line_to(self, point: Union[_core.vec2, Tuple[float, float], Sequence[float]]) -> path:
+        """Appends a straight segment to `point` [m] (a corner unless it lies straight ahead); returns the path."""
+        ...
+    @property
+    def length(self) -> float:
+        """L [m]"""
+        ...
+    @property
+    def end_pose(self) -> _core.pose:
+        """where the next segment starts"""
+        ...
+    def empty(self) -> bool: ...
+    def at(self, arc_length: float) -> path_point:
+        """Position, heading and curvature at arc length s [m] (straight beyond the ends)."""
+        ...
+    def points(self, spacing: float = ...) -> numpy.typing.NDArray[numpy.float64]:
+        """The path at about `spacing` [m], shape (points, 2) [m]"""
+        ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __repr__(self) -> str: ...
+
+class path_point:
+    """The geometry of a path at one arc length."""
+    @property
+    def position(self) -> _core.vec2:
+        """[m]"""
+        ...
+    @property
+    def heading(self) -> float:
+        """tangent direction [rad], wrapped to (−π, π]"""
+        ...
+    @property
+    def curvature(self) -> float:
+        """κ [1/m], left positive"""
+        ...
+    def __repr__(self) -> str: ...
+
+class pedestrian:
+    """A pedestrian that replays its motion (a disc)."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    name: str
+    motion: scripted_motion
+    radius: float
+    """[m]"""
+
+class pedestrian_list:
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, arg0: Union[pedestrian_list, Sequence[pedestrian]]) -> None:
+        """Copy constructor"""
+        ...
+    @overload
+    def __init__(self, arg0: Iterable[Any]) -> None: ...
+    def append(self, x: pedestrian) -> None:
+        """Add an item to the end of the list"""
+        ...
+    def clear(self) -> None:
+        """Clear the contents"""
+        ...
+    @overload
+    def extend(self, L: Union[pedestrian_list, Sequence[pedestrian]]) -> None:
+        """Extend the list by appending all the items in the given list"""
+        ...
+    @overload
+    def extend(self, L: Iterable[Any]) -> None:
+        """Extend the list by appending all the items in the given list"""
+        ...
+    def insert(self, i: int, x: pedestrian) -> None:
+        """Insert an item at a given position."""
+        ...
+    @overload
+    def pop(self) -> pedestrian:
+        """Remove and return the last item"""
+        ...
+    @overload
+    def pop(self, i: int) -> pedestrian:
+        """Remove and return the item at index ``i``"""
+        ...
+    @overload
+    def __setitem__(self, arg0: int, arg1: pedestrian) -> None: ...
+    @overload
+    def __setitem__(self, arg0: slice, arg1: Union[pedestrian_list, Sequence[pedestrian]]) -> None:
+        """Assign list elements using a slice object"""
+        ...
+    @overload
+    def __getitem__(self, s: slice) -> pedestrian_list:
+        """Retrieve list elements using a slice object"""
+        ...
+    @overload
+    def __getitem__(self, arg0: int) -> pedestrian: ...
+    @overload
+    def __delitem__(self, arg0: int) -> None:
+        """Delete the list elements at index ``i``"""
+        ...
+    @overload
+    def __delitem__(self, arg0: slice) -> None:
+        """Delete list elements using a slice object"""
+        ...
+    def __iter__(self) -> Iterator[Any]: ...
+    def __bool__(self) -> bool:
+        """Check whether the list is nonempty"""
+        ...
+    def __len__(self) -> int: ...
+    def __eq__(self, arg0: object) -> bool: ...
+
 class plan_record:
     """The last planning step of a planning vehicle."""
     def __getstate__(self) -> Tuple[Any, ...]: ...
@@ -278,19 +489,39 @@ class plan_record:
 
 class planning_vehicle:
     """A vehicle that follows its path and avoids the others with the planner."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
     name: str
+    path: path
+    """its reference path"""
+    start_arc_length: float
+    """s0 [m]"""
+    start_lateral_offset: float
+    """[m], left positive"""
     start_time: float
     """[s]"""
+    before_start: before_start_behaviour
     initial_speed: float
     """[m/s]"""
     desired_speed: float
     """[m/s]"""
+    desired_speed_profile: Optional[speed_profile]
+    """None: desired_speed throughout"""
     shape: _core.rectangle
     """[m]"""
     limits: _core.ego_limits
     """spec §3"""
     planner: _core.planner_config
     """its planner_config"""
+    follower: follower_config
+    """how it drives its path (u_nom)"""
     avoidance: bool
     """False: u_nom without planning"""
     planning_period: int
@@ -298,9 +529,9 @@ class planning_vehicle:
     def path_points(self, spacing: float = ...) -> numpy.typing.NDArray[numpy.float64]:
         """Its reference path at about `spacing` [m], shape (points, 2) [m]"""
         ...
-    def __repr__(self) -> str: ...
 
 class planning_vehicle_list:
+    __hash__: ClassVar[None]  # type: ignore[assignment]
     @overload
     def __init__(self) -> None: ...
     @overload
@@ -359,6 +590,7 @@ class planning_vehicle_list:
         """Check whether the list is nonempty"""
         ...
     def __len__(self) -> int: ...
+    def __eq__(self, arg0: object) -> bool: ...
 
 class road:
     """A road drawn under the agents (not used by the simulation)."""
@@ -513,6 +745,12 @@ class run_record:
 
 class scenario:
     """Everything a run needs (change it before the run starts)."""
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
     name: str
     description: str
     duration: float
@@ -521,10 +759,24 @@ class scenario:
     """dt [s]"""
     seed: int
     """seeds the sensor noise"""
+    noise: sensing_noise
+    """on every observation of a planning vehicle"""
     @property
     def planning_vehicles(self) -> planning_vehicle_list: ...
     @planning_vehicles.setter
     def planning_vehicles(self, value: Union[planning_vehicle_list, Sequence[planning_vehicle]]) -> None: ...
+    @property
+    def scripted_vehicles(self) -> scripted_vehicle_list: ...
+    @scripted_vehicles.setter
+    def scripted_vehicles(self, value: Union[scripted_vehicle_list, Sequence[scripted_vehicle]]) -> None: ...
+    @property
+    def pedestrians(self) -> pedestrian_list: ...
+    @pedestrians.setter
+    def pedestrians(self, value: Union[pedestrian_list, Sequence[pedestrian]]) -> None: ...
+    @property
+    def static_obstacles(self) -> static_obstacle_list: ...
+    @static_obstacles.setter
+    def static_obstacles(self, value: Union[static_obstacle_list, Sequence[static_obstacle]]) -> None: ...
     @property
     def drivable_area(self) -> Optional[_core.drivable_area]:
         """the road constraint of every planning vehicle (spec §5), or None"""
@@ -540,6 +792,153 @@ class scenario_error(ValueError):
     column: int
     field: str
     problem: str
+
+class scripted_car_following:
+    """Car following for a scripted vehicle: it lags behind its script where it must."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __getstate__(self) -> Dict[str, Any]: ...
+    def __setstate__(self, arg0: Dict[str, Any]) -> None: ...
+    following: car_following_config
+    max_acceleration: float
+    """a [m/s²] > 0"""
+    comfortable_deceleration: float
+    """b [m/s²] > 0"""
+    max_deceleration: float
+    """d_max [m/s²] > 0"""
+    speed_gain: float
+    """k_v [1/s] > 0"""
+    follows_scripted: bool
+    """False: follow only road users that do not keep to a script"""
+
+class scripted_motion:
+    """The motion of a scripted agent: along its path exactly, at its speed profile."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    path: path
+    start_time: float
+    """[s], ≥ 0"""
+    start_arc_length: float
+    """s0 [m], 0 ≤ s0 < path length"""
+    before_start: before_start_behaviour
+    speed: speed_profile
+    """on its own clock"""
+    stop: Optional[stop_rule]
+    """None: no stop"""
+
+class scripted_vehicle:
+    """A vehicle that replays its motion, ignoring the others unless it follows (the paper's B)."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    name: str
+    motion: scripted_motion
+    shape: _core.rectangle
+    """[m]"""
+    car_following: Optional[scripted_car_following]
+    """None: exactly its motion"""
+
+class scripted_vehicle_list:
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, arg0: Union[scripted_vehicle_list, Sequence[scripted_vehicle]]) -> None:
+        """Copy constructor"""
+        ...
+    @overload
+    def __init__(self, arg0: Iterable[Any]) -> None: ...
+    def append(self, x: scripted_vehicle) -> None:
+        """Add an item to the end of the list"""
+        ...
+    def clear(self) -> None:
+        """Clear the contents"""
+        ...
+    @overload
+    def extend(self, L: Union[scripted_vehicle_list, Sequence[scripted_vehicle]]) -> None:
+        """Extend the list by appending all the items in the given list"""
+        ...
+    @overload
+    def extend(self, L: Iterable[Any]) -> None:
+        """Extend the list by appending all the items in the given list"""
+        ...
+    def insert(self, i: int, x: scripted_vehicle) -> None:
+        """Insert an item at a given position."""
+        ...
+    @overload
+    def pop(self) -> scripted_vehicle:
+        """Remove and return the last item"""
+        ...
+    @overload
+    def pop(self, i: int) -> scripted_vehicle:
+        """Remove and return the item at index ``i``"""
+        ...
+    @overload
+    def __setitem__(self, arg0: int, arg1: scripted_vehicle) -> None: ...
+    @overload
+    def __setitem__(self, arg0: slice, arg1: Union[scripted_vehicle_list, Sequence[scripted_vehicle]]) -> None:
+        """Assign list elements using a slice object"""
+        ...
+    @overload
+    def __getitem__(self, s: slice) -> scripted_vehicle_list:
+        """Retrieve list elements using a slice object"""
+        ...
+    @overload
+    def __getitem__(self, arg0: int) -> scripted_vehicle: ...
+    @overload
+    def __delitem__(self, arg0: int) -> None:
+        """Delete the list elements at index ``i``"""
+        ...
+    @overload
+    def __delitem__(self, arg0: slice) -> None:
+        """Delete list elements using a slice object"""
+        ...
+    def __iter__(self) -> Iterator[Any]: ...
+    def __bool__(self) -> bool:
+        """Check whether the list is nonempty"""
+        ...
+    def __len__(self) -> int: ...
+    def __eq__(self, arg0: object) -> bool: ...
+
+class sensing_noise:
+    """Gaussian noise on every observation of a planning vehicle (spec §4)."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __getstate__(self) -> Dict[str, Any]: ...
+    def __setstate__(self, arg0: Dict[str, Any]) -> None: ...
+    position_sd: float
+    """σ of x and y [m], ≥ 0"""
+    heading_sd: float
+    """σ [rad], ≥ 0"""
+    speed_sd: float
+    """σ [m/s], ≥ 0"""
 
 class simulation:
     """A run of a scenario on a fixed time grid, step by step (docs/simulator.md)."""
@@ -587,3 +986,141 @@ class simulation:
     def run(self) -> None:
         """Steps to the end."""
         ...
+
+class speed_knot:
+    """One knot of a speed profile."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    @overload
+    def __init__(self, time: float, speed: float) -> None: ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __getstate__(self) -> Dict[str, Any]: ...
+    def __setstate__(self, arg0: Dict[str, Any]) -> None: ...
+    time: float
+    """on the agent's own clock, stops not counted [s], ≥ 0"""
+    speed: float
+    """[m/s], ≥ 0"""
+
+class speed_profile:
+    """Speed as a piecewise-linear function of the agent's own clock (knot times increasing)."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __getstate__(self) -> Dict[str, Any]: ...
+    def __setstate__(self, arg0: Dict[str, Any]) -> None: ...
+    knots: List[speed_knot]
+    @staticmethod
+    def constant(speed: float) -> speed_profile:
+        """A constant speed v [m/s]."""
+        ...
+
+class static_obstacle:
+    """A convex polygon that never moves."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    name: str
+    @property
+    def vertices(self) -> List[_core.vec2]:
+        """world frame [m], 3 to 16, either orientation"""
+        ...
+    @vertices.setter
+    def vertices(self, value: Sequence[Union[_core.vec2, Tuple[float, float], Sequence[float]]]) -> None: ...
+
+class static_obstacle_list:
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, arg0: Union[static_obstacle_list, Sequence[static_obstacle]]) -> None:
+        """Copy constructor"""
+        ...
+    @overload
+    def __init__(self, arg0: Iterable[Any]) -> None: ...
+    def append(self, x: static_obstacle) -> None:
+        """Add an item to the end of the list"""
+        ...
+    def clear(self) -> None:
+        """Clear the contents"""
+        ...
+    @overload
+    def extend(self, L: Union[static_obstacle_list, Sequence[static_obstacle]]) -> None:
+        """Extend the list by appending all the items in the given list"""
+        ...
+    @overload
+    def extend(self, L: Iterable[Any]) -> None:
+        """Extend the list by appending all the items in the given list"""
+        ...
+    def insert(self, i: int, x: static_obstacle) -> None:
+        """Insert an item at a given position."""
+        ...
+    @overload
+    def pop(self) -> static_obstacle:
+        """Remove and return the last item"""
+        ...
+    @overload
+    def pop(self, i: int) -> static_obstacle:
+        """Remove and return the item at index ``i``"""
+        ...
+    @overload
+    def __setitem__(self, arg0: int, arg1: static_obstacle) -> None: ...
+    @overload
+    def __setitem__(self, arg0: slice, arg1: Union[static_obstacle_list, Sequence[static_obstacle]]) -> None:
+        """Assign list elements using a slice object"""
+        ...
+    @overload
+    def __getitem__(self, s: slice) -> static_obstacle_list:
+        """Retrieve list elements using a slice object"""
+        ...
+    @overload
+    def __getitem__(self, arg0: int) -> static_obstacle: ...
+    @overload
+    def __delitem__(self, arg0: int) -> None:
+        """Delete the list elements at index ``i``"""
+        ...
+    @overload
+    def __delitem__(self, arg0: slice) -> None:
+        """Delete list elements using a slice object"""
+        ...
+    def __iter__(self) -> Iterator[Any]: ...
+    def __bool__(self) -> bool:
+        """Check whether the list is nonempty"""
+        ...
+    def __len__(self) -> int: ...
+    def __eq__(self, arg0: object) -> bool: ...
+
+class stop_rule:
+    """A stop on the path, e.g. a pedestrian waiting at the kerb."""
+    __hash__: ClassVar[None]  # type: ignore[assignment]
+    @overload
+    def __init__(self) -> None: ...
+    @overload
+    def __init__(self, **kwargs: Any) -> None:
+        """Every field from its keyword argument; the others keep their defaults."""
+        ...
+    def __repr__(self) -> str: ...
+    def __eq__(self, arg0: object) -> bool: ...
+    def __getstate__(self) -> Dict[str, Any]: ...
+    def __setstate__(self, arg0: Dict[str, Any]) -> None: ...
+    arc_length: float
+    """s_stop [m] on the path, ≥ the start arc length"""
+    duration: Optional[float]
+    """how long it stands [s] > 0; None: for ever"""
