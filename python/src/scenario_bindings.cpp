@@ -257,10 +257,17 @@ void bind_scenario(py::module_& m) {
       .def_readwrite("scripted_vehicles", &sim::scenario::scripted_vehicles)
       .def_readwrite("pedestrians", &sim::scenario::pedestrians)
       .def_readwrite("static_obstacles", &sim::scenario::static_obstacles)
-      .def_property_readonly("drivable_area", [](const sim::scenario& sc) -> std::optional<std::shared_ptr<drivable_area>> {
-        if (sc.drivable_area.empty()) return std::nullopt;
-        return std::make_shared<drivable_area>(sc.drivable_area);
-      }, "the road constraint of every planning vehicle (spec §5), or None")
+      .def_property(
+          "drivable_area",
+          [](const sim::scenario& sc) -> std::optional<std::shared_ptr<drivable_area>> {
+            if (sc.drivable_area.empty()) return std::nullopt;
+            return std::make_shared<drivable_area>(sc.drivable_area);
+          },
+          [](sim::scenario& sc, const std::optional<std::shared_ptr<drivable_area>>& area) {
+            sc.drivable_area = area && *area ? drivable_outline{(*area)->polygons(), (*area)->open_edges()}
+                                             : drivable_outline{};
+          },
+          "the road constraint of every planning vehicle (spec §5), or None")
       .def("validation_error", [](const sim::scenario& sc) { return sim::validation_error(sc); },
            "The first problem, naming the agent and the field, or None.")
       .def("__repr__", [](const sim::scenario& sc) {

@@ -219,6 +219,19 @@ def test_a_pedestrian_and_a_static_obstacle_added_in_python_take_part_in_the_run
     assert closest is not None and closest > 0.3
 
 
+def test_a_drivable_area_given_to_a_scenario_built_in_python_keeps_its_vehicle_on_the_road(source_dir):
+    on_road = mm.sim.load(source_dir / "examples" / "scenarios" / "s1-crossing-road.yaml").scenario
+    assert on_road.drivable_area is not None
+    built = s1_crossing_built_in_python()
+    built.name = on_road.name
+    built.planning_vehicles = on_road.planning_vehicles
+    built.drivable_area = on_road.drivable_area
+    assert mm.sim.run(built).y.tobytes() == mm.sim.run(on_road).y.tobytes()
+    built.drivable_area = None
+    assert built.drivable_area is None
+    assert mm.sim.run(built).y.tobytes() != mm.sim.run(on_road).y.tobytes()
+
+
 def test_paths_built_in_python_and_a_bad_agent_give_clear_errors():
     corner = mm.sim.path.polyline([(0.0, 0.0), (10.0, 0.0), (10.0, 10.0)])
     assert corner.length == 20.0
