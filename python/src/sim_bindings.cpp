@@ -344,6 +344,10 @@ void bind_simulation(py::module_& m) {
       .def("planned_now", &sim::simulation::planned_now, py::arg("id"))
       .def("planning_input", &sim::simulation::planning_input, py::arg("id"),
            "The input planning vehicle `id` plans on now (None when it is not in the world).")
+      .def("override_command", &sim::simulation::override_command, py::arg("id"), py::arg("command"),
+           "Drives planning vehicle `id` with `command` from now until its next decision, instead of the one it "
+           "decided (your own controller in the loop); it still senses and plans. ValueError when it is not active "
+           "or the command is beyond its limits.")
       .def("crashes", [](const sim::simulation& s) {
         return std::vector<sim::crash_event>(s.crashes().begin(), s.crashes().end());
       })

@@ -220,4 +220,19 @@ std::optional<std::string> validation_error(const scenario& s) {
   return c.error;
 }
 
+std::optional<std::string> command_error(const planning_vehicle& v, double speed, const mm::maneuver& u) {
+  const ego_limits& limits = v.limits;
+  if (!std::isfinite(u.acceleration) || u.acceleration < -limits.max_deceleration ||
+      u.acceleration > limits.max_acceleration) {
+    return "acceleration = " + number(u.acceleration) + ": expected from " + number(-limits.max_deceleration) +
+           " to " + number(limits.max_acceleration) + " [m/s²]";
+  }
+  const double most = mm::max_curvature(speed, limits);
+  if (!std::isfinite(u.curvature) || std::abs(u.curvature) > most) {
+    return "curvature = " + number(u.curvature) + ": expected from " + number(-most) + " to " + number(most) +
+           " [1/m] at its speed of " + number(speed) + " m/s";
+  }
+  return std::nullopt;
+}
+
 }  // namespace mm::sim

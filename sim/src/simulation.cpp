@@ -913,6 +913,20 @@ bool simulation::planned_now(agent_id id) const {
   return impl_->vehicles[checked(id, impl_->vehicles.size(), "planning vehicle", "planned_now")].planned_now;
 }
 
+void simulation::override_command(agent_id id, const mm::maneuver& u) {
+  impl::vehicle& v = impl_->vehicles[checked(id, impl_->vehicles.size(), "planning vehicle", "override_command")];
+  agent_state& s = impl_->states[id];
+  const std::string who = "override_command: planning vehicle \"" + impl_->infos[id].name + "\"";
+  if (s.status != agent_status::active) {
+    throw std::invalid_argument(who + " is " + std::string(to_string(s.status)) +
+                                ": only an active vehicle takes a command");
+  }
+  if (auto why = command_error(*v.spec, s.speed, u)) throw std::invalid_argument(who + ": " + *why);
+  v.command = u;
+  s.acceleration = u.acceleration;
+  s.curvature = u.curvature;
+}
+
 std::optional<mm::plan_input> simulation::planning_input(agent_id id) const {
   const impl::vehicle& v = impl_->vehicles[checked(id, impl_->vehicles.size(), "planning vehicle", "planning_input")];
   if (!impl_->states[id].present()) return std::nullopt;

@@ -115,6 +115,33 @@ def test_the_planning_input_of_a_vehicle_plans_in_python_as_the_vehicle_planned(
         simulation.state(simulation.agent_count)
 
 
+def test_a_planner_in_the_loop_from_python_drives_the_vehicle_as_its_own_planner_does():
+    own = mm.sim.run("s1-crossing")
+    sim = mm.sim.simulation(mm.sim.load("s1-crossing"))
+    a = sim.find("A")
+    assert a is not None
+    xs = []
+    while not sim.ended():
+        scene = sim.planning_input(a)
+        if scene is not None and sim.state(a).status == mm.sim.agent_status.active:
+            sim.override_command(a, mm.plan(scene).command)  # what A itself decided, bit for bit
+        xs.append(sim.state(a).pose.x)
+        sim.step()
+    xs.append(sim.state(a).pose.x)
+    assert np.array_equal(np.array(xs), own.x[:, 0])
+    # A controller that holds the speed and the lane drives A into B.
+    sim = mm.sim.simulation(mm.sim.load("s1-crossing"))
+    while not sim.ended():
+        if sim.state(a).status == mm.sim.agent_status.active:
+            sim.override_command(a, mm.maneuver(0.0, 0.0))
+        sim.step()
+    assert [(c.first, c.second) for c in sim.crashes()] == [(a, sim.find("B"))]
+    with pytest.raises(ValueError, match=re.escape('planning vehicle "A" is crashed: only an active vehicle')):
+        sim.override_command(a, mm.maneuver(0.0, 0.0))
+    with pytest.raises(IndexError, match="override_command: planning vehicle 1 does not exist"):
+        sim.override_command(1, mm.maneuver(0.0, 0.0))
+
+
 def test_a_scenario_error_names_the_line_the_column_and_the_field():
     text = "format: maneuvermap-scenario/1\nnme: typo\n"
     with pytest.raises(mm.sim.scenario_error) as caught:

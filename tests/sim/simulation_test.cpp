@@ -190,6 +190,71 @@ TEST(simulation, an_id_that_does_not_exist_is_an_out_of_range_error_that_names_t
   EXPECT_EQ(message([&] { (void)sim.state(1); }), "no error");
 }
 
+TEST(simulation, a_command_given_from_outside_drives_the_vehicle_until_its_next_decision) {
+  // A, which plans, is braked to a stop from outside at 1 s; it senses and plans on, and its plans
+  // stay its own planner's.
+  scenario s = crossing(true);
+  s.duration = 3.0;
+  s.planning_vehicles[0].planner.safety_margin = 0.3;
+  const double hardest = s.planning_vehicles[0].limits.max_deceleration;
+  simulation sim(s);
+  while (sim.time() < 1.0 - 1e-9) sim.step();
+  const double speed_at_one = sim.state(0).speed;
+  const mm::vec2 at_one = sim.state(0).pose.position;
+  while (!sim.ended()) {
+    sim.override_command(0, {-hardest, 0.0});
+    EXPECT_EQ(sim.state(0).acceleration, -hardest);
+    EXPECT_EQ(sim.state(0).curvature, 0.0);
+    sim.step();
+    if (sim.ended()) break;
+    EXPECT_TRUE(sim.planned_now(0));
+    EXPECT_EQ(sim.last_plan(0)->result.command, mm::plan(*sim.planning_input(0)).command);
+  }
+  // v(t) = max(0, v(1 s) − d_max (t − 1 s)): stopped after 11.1/7 = 1.6 s, before B crosses.
+  EXPECT_EQ(sim.state(0).speed, 0.0);
+  // Straight on (κ = 0) from where it was at 1 s, by its braking distance v²/(2 d_max).
+  const mm::vec2 moved = sim.state(0).pose.position - at_one;
+  EXPECT_NEAR(std::hypot(moved.x, moved.y), speed_at_one * speed_at_one / (2.0 * hardest), 1e-9);
+  EXPECT_FALSE(sim.metrics(0).crash);
+
+  // Its own command, given back from outside, leaves the run as it was, bit for bit.
+  simulation own(s);
+  simulation given(s);
+  while (!own.ended()) {
+    given.override_command(0, {own.state(0).acceleration, own.state(0).curvature});
+    own.step();
+    given.step();
+    ASSERT_EQ(own.state(0).pose.position.x, given.state(0).pose.position.x);
+    ASSERT_EQ(own.state(0).pose.position.y, given.state(0).pose.position.y);
+  }
+}
+
+TEST(simulation, a_command_from_outside_beyond_the_vehicle_s_limits_or_for_an_inactive_vehicle_is_refused) {
+  scenario s = crossing(true);
+  s.planning_vehicles[0].start_time = 0.5;
+  simulation sim(s);
+  const auto message = [&](mm::maneuver u) {
+    try {
+      sim.override_command(0, u);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_EQ(message({0.0, 0.0}), "override_command: planning vehicle \"A\" is not_started: only an active vehicle takes a command");
+  while (sim.time() < 0.5 - 1e-9) sim.step();
+  ASSERT_EQ(sim.state(0).status, agent_status::active);
+  EXPECT_EQ(message({-9.0, 0.0}), "override_command: planning vehicle \"A\": acceleration = -9: expected from -7 to 3 [m/s²]");
+  EXPECT_EQ(message({std::nan(""), 0.0}),
+            "override_command: planning vehicle \"A\": acceleration = NaN: expected from -7 to 3 [m/s²]");
+  // κ_max(v) = min(1/R_min, a_lat_max / v²) at A's 40 km/h.
+  const double most = mm::max_curvature(sim.state(0).speed, s.planning_vehicles[0].limits);
+  EXPECT_EQ(message({0.0, most}), "no error");
+  EXPECT_NE(message({0.0, -1.01 * most}).find("curvature = -"), std::string::npos);
+  EXPECT_NE(message({0.0, -1.01 * most}).find(" [1/m] at its speed of 11.1"), std::string::npos);
+  EXPECT_THROW(sim.override_command(1, {0.0, 0.0}), std::out_of_range);  // B does not plan
+}
+
 TEST(simulation, planning_every_k_steps_holds_the_command_in_between) {
   scenario s = crossing(true);
   s.duration = 0.5;

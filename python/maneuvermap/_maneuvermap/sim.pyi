@@ -976,6 +976,9 @@ class simulation:
     def planning_input(self, id: int) -> Optional[_core.plan_input]:
         """The input planning vehicle `id` plans on now (None when it is not in the world)."""
         ...
+    def override_command(self, id: int, command: _core.maneuver) -> None:
+        """Drives planning vehicle `id` with `command` from now until its next decision, instead of the one it decided (your own controller in the loop); it still senses and plans. ValueError when it is not active or the command is beyond its limits."""
+        ...
     def crashes(self) -> List[crash_event]: ...
     def metrics(self, id: int) -> run_metrics:
         """spec §12"""

@@ -114,6 +114,11 @@ struct scenario {
 /// `planning_vehicles[0] "A": desired_speed = -1: expected a finite number ≥ 0 [m/s]`; or nothing.
 std::optional<std::string> validation_error(const scenario& s);
 
+/// Why `u` is not a command planning vehicle `v` can take at `speed` [m/s]: a ∈ [−d_max, a_max] and
+/// |κ| ≤ κ_max(speed) (spec §3, `mm::max_curvature`), e.g. `acceleration = -9: expected from -7 to 3
+/// [m/s²]`; or nothing.
+std::optional<std::string> command_error(const planning_vehicle& v, double speed, const mm::maneuver& u);
+
 /// The footprint of a static obstacle about its reference point (the mean of its vertices).
 mm::convex_polygon static_footprint(const static_obstacle& obstacle);
 

@@ -146,6 +146,16 @@ class simulation {
   /// the vehicle is not in the world.
   std::optional<mm::plan_input> planning_input(agent_id id) const;
 
+  /// Drives planning vehicle `id` with `u` from the current time until its next decision (the next
+  /// step, or the next planning step with a `planning_period` above 1) instead of the command it
+  /// decided: a controller of the caller's in the loop, e.g. another planner run on
+  /// `planning_input(id)`. The vehicle still senses and plans as before (its plans, map and
+  /// `time_in_brake`/`time_in_accel` stay its own planner's); `state(id)` shows `u` as the command
+  /// applied from now. Throws std::out_of_range for an id that is not a planning vehicle, and
+  /// std::invalid_argument, naming the vehicle, the field and its value, when the vehicle is not
+  /// active or `u` is outside its limits: a ∈ [−d_max, a_max] and |κ| ≤ κ_max(v) (spec §3).
+  void override_command(agent_id id, const mm::maneuver& u);
+
   /// Every crash so far, in time order.
   std::span<const crash_event> crashes() const;
 
