@@ -229,6 +229,26 @@ TEST(simulation, a_command_given_from_outside_drives_the_vehicle_until_its_next_
   }
 }
 
+TEST(simulation, a_command_from_outside_holds_until_the_next_planning_step_of_a_vehicle_that_plans_every_k_steps) {
+  scenario s = crossing(true);
+  s.duration = 0.5;
+  s.planning_vehicles[0].planning_period = 5;
+  simulation sim(s);
+  const mm::maneuver given{-1.5, 0.0};
+  sim.override_command(0, given);
+  for (int k = 1; k < 10; ++k) {
+    sim.step();
+    const mm::maneuver applied{sim.state(0).acceleration, sim.state(0).curvature};
+    if (k < 5) {
+      EXPECT_FALSE(sim.planned_now(0)) << k;
+      EXPECT_EQ(applied, given) << k;
+    } else if (k == 5) {
+      ASSERT_TRUE(sim.planned_now(0));
+      EXPECT_EQ(applied, sim.last_plan(0)->result.command);  // its own decision again
+    }
+  }
+}
+
 TEST(simulation, a_command_from_outside_beyond_the_vehicle_s_limits_or_for_an_inactive_vehicle_is_refused) {
   scenario s = crossing(true);
   s.planning_vehicles[0].start_time = 0.5;
