@@ -54,6 +54,16 @@ py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
   return c;
 }
 
+/// Gives a bound type `__copy__` and `__deepcopy__` by its C++ copy (a deep copy: the C++ value owns
+/// everything it holds), for the types that do not pickle (a scenario, its agents and paths), so that
+/// `copy.deepcopy(loaded)` makes a variant to change while the original stays as it was.
+template <class T, class... Options>
+py::class_<T, Options...>& copied_by_value(py::class_<T, Options...>& c) {
+  c.def("__copy__", [](const T& self) { return T(self); });
+  c.def("__deepcopy__", [](const T& self, const py::dict&) { return T(self); }, py::arg("memo"));
+  return c;
+}
+
 /// `with_keyword_fields`, and pickling by fields (so that values can be sent to other processes:
 /// `multiprocessing`, `concurrent.futures`).
 template <class T, class... Options>

@@ -120,6 +120,7 @@ void bind_path(py::module_& m) {
                py::repr(py::float_(path.length())).cast<std::string>() + ")";
       });
   p.attr("__hash__") = py::none();
+  copied_by_value(p);
 }
 
 void bind_motions(py::module_& m) {
@@ -143,7 +144,7 @@ void bind_motions(py::module_& m) {
 
   py::class_<sim::scripted_motion> motion(
       m, "scripted_motion", "The motion of a scripted agent: along its path exactly, at its speed profile.");
-  with_keyword_fields(motion)
+  copied_by_value(with_keyword_fields(motion))
       .def_readwrite("path", &sim::scripted_motion::path)
       .def_readwrite("start_time", &sim::scripted_motion::start_time, "[s], ≥ 0")
       .def_readwrite("start_arc_length", &sim::scripted_motion::start_arc_length, "s0 [m], 0 ≤ s0 < path length")
@@ -193,7 +194,7 @@ void bind_motions(py::module_& m) {
 void bind_agents(py::module_& m) {
   py::class_<sim::planning_vehicle> planning(
       m, "planning_vehicle", "A vehicle that follows its path and avoids the others with the planner.");
-  with_keyword_fields(planning)
+  copied_by_value(with_keyword_fields(planning))
       .def_readwrite("name", &sim::planning_vehicle::name)
       .def_readwrite("path", &sim::planning_vehicle::path, "its reference path")
       .def_readwrite("start_arc_length", &sim::planning_vehicle::start_arc_length, "s0 [m]")
@@ -217,7 +218,7 @@ void bind_agents(py::module_& m) {
 
   py::class_<sim::scripted_vehicle> scripted(
       m, "scripted_vehicle", "A vehicle that replays its motion, ignoring the others unless it follows (the paper's B).");
-  with_keyword_fields(scripted)
+  copied_by_value(with_keyword_fields(scripted))
       .def_readwrite("name", &sim::scripted_vehicle::name)
       .def_readwrite("motion", &sim::scripted_vehicle::motion)
       .def_readwrite("shape", &sim::scripted_vehicle::shape, "[m]")
@@ -225,14 +226,14 @@ void bind_agents(py::module_& m) {
   agent_list<sim::scripted_vehicle>(m, "scripted_vehicle_list");
 
   py::class_<sim::pedestrian> walker(m, "pedestrian", "A pedestrian that replays its motion (a disc).");
-  with_keyword_fields(walker)
+  copied_by_value(with_keyword_fields(walker))
       .def_readwrite("name", &sim::pedestrian::name)
       .def_readwrite("motion", &sim::pedestrian::motion)
       .def_readwrite("radius", &sim::pedestrian::radius, "[m]");
   agent_list<sim::pedestrian>(m, "pedestrian_list");
 
   py::class_<sim::static_obstacle> still(m, "static_obstacle", "A convex polygon that never moves.");
-  with_keyword_fields(still)
+  copied_by_value(with_keyword_fields(still))
       .def_readwrite("name", &sim::static_obstacle::name)
       .def_readwrite("vertices", &sim::static_obstacle::vertices, "world frame [m], 3 to 16, either orientation");
   agent_list<sim::static_obstacle>(m, "static_obstacle_list");
@@ -240,6 +241,7 @@ void bind_agents(py::module_& m) {
 
 void bind_scenario(py::module_& m) {
   py::class_<sim::scenario> s(m, "scenario", "Everything a run needs (change it before the run starts).");
+  copied_by_value(s);
   s.def(py::init<>())
       .def(py::init([](const py::kwargs& fields) {
              py::object value = py::cast(sim::scenario{});

@@ -190,7 +190,8 @@ void bind_scenarios(py::module_& m) {
                     "of the arcs joining the arms to the ring [m]")
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
 
-  py::class_<loaded_scenario>(m, "loaded_scenario", "A scenario file mapped onto the simulator's types.")
+  py::class_<loaded_scenario> loaded(m, "loaded_scenario", "A scenario file mapped onto the simulator's types.");
+  copied_by_value(loaded)
       .def_readwrite("scenario", &loaded_scenario::scenario)
       .def_readonly("roads", &loaded_scenario::roads, "to draw under the agents")
       .def_property_readonly("roundabout", [](const loaded_scenario& s) -> std::optional<sim::roundabout> {

@@ -1,5 +1,6 @@
 """The simulator from Python: a run gives what `maneuvermap run` writes, as arrays (docs/python.md)."""
 import concurrent.futures
+import copy
 import csv
 import math
 import multiprocessing
@@ -257,6 +258,24 @@ def test_a_drivable_area_given_to_a_scenario_built_in_python_keeps_its_vehicle_o
     built.drivable_area = None
     assert built.drivable_area is None
     assert mm.sim.run(built).y.tobytes() != mm.sim.run(on_road).y.tobytes()
+
+
+def test_copies_of_a_loaded_scenario_are_variants_that_leave_the_original_and_run_in_threads_as_alone():
+    base = mm.sim.load("s1-crossing")
+    original = base.scenario.scripted_vehicles[0].motion.start_time
+    variants = []
+    for delay in (0.0, 0.5, 1.0):
+        variant = copy.deepcopy(base)
+        variant.scenario.scripted_vehicles[0].motion.start_time += delay
+        variants.append(variant)
+    assert base.scenario.scripted_vehicles[0].motion.start_time == original
+    assert copy.copy(base.scenario.planning_vehicles[0]) == base.scenario.planning_vehicles[0]
+    alone = [mm.sim.run(v).x.tobytes() for v in variants]
+    with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
+        together = [r.x.tobytes() for r in pool.map(mm.sim.run, variants)]
+    assert together == alone
+    assert alone[0] == mm.sim.run("s1-crossing").x.tobytes()
+    assert len(set(alone)) == 3  # B later, A's run another
 
 
 def test_paths_built_in_python_and_a_bad_agent_give_clear_errors():
