@@ -1,6 +1,7 @@
 // Bindings of the simulator and its scenario files (docs/python.md): load a scenario, run it step by
 // step or whole, read every agent's states and every planning vehicle's Maneuverability Map.
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 #include <pybind11/stl_bind.h>
 
 #include <algorithm>
@@ -16,6 +17,7 @@
 #include "bindings.hpp"
 #include "fields.hpp"
 #include "scenario_bindings.hpp"
+#include "mm/cli/commands.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/scenario_file/loader.hpp"
 #include "mm/sim/simulation.hpp"
@@ -140,6 +142,31 @@ scenario_file::load_options load_options_of(const std::optional<std::map<std::st
   options.seed = seed;
   options.on_roads = on_roads;
   return options;
+}
+
+/// The scenario `call` (`run`, `write_run`) was given: a built-in name or a file (loaded with the
+/// overrides), a loaded_scenario or a scenario (which take none).
+loaded_scenario loaded_from(const char* call, const py::object& what, const std::optional<std::map<std::string, double>>& set,
+                            const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed,
+                            bool on_roads) {
+  const bool is_loaded = py::isinstance<loaded_scenario>(what);
+  if ((is_loaded || py::isinstance<sim::scenario>(what)) && (set || policy || seed || on_roads)) {
+    throw py::value_error(std::string("set, policy, seed and on_roads apply when loading: pass a name or a file to ") +
+                          call + "()");
+  }
+  if (is_loaded) return what.cast<loaded_scenario>();
+  if (py::isinstance<sim::scenario>(what)) {
+    loaded_scenario loaded;
+    loaded.scenario = what.cast<sim::scenario>();
+    loaded.source = "<scenario>";
+    return loaded;
+  }
+  if (py::isinstance<py::str>(what) || py::hasattr(what, "__fspath__")) {
+    const std::string name = py::str(py::module_::import("os").attr("fspath")(what));
+    return scenario_file::load(name, load_options_of(set, policy, seed, on_roads));
+  }
+  throw py::type_error(std::string(call) + "(): expected a built-in name, a scenario file, a loaded_scenario or a "
+                       "scenario, got " + py::repr(what).cast<std::string>());
 }
 
 sim::run_options run_options_of(std::size_t jobs, bool map_columns, bool measure_cpu_time) {
@@ -448,23 +475,7 @@ void bind_simulation(py::module_& m) {
         [](const py::object& what, const std::optional<std::map<std::string, double>>& set,
            const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, bool on_roads,
            std::size_t jobs, bool map_columns, bool measure_cpu_time) {
-          loaded_scenario loaded;
-          const bool is_loaded = py::isinstance<loaded_scenario>(what);
-          if ((is_loaded || py::isinstance<sim::scenario>(what)) && (set || policy || seed || on_roads)) {
-            throw py::value_error("set, policy, seed and on_roads apply when loading: pass a name or a file to run()");
-          }
-          if (is_loaded) {
-            loaded = what.cast<loaded_scenario>();
-          } else if (py::isinstance<sim::scenario>(what)) {
-            loaded.scenario = what.cast<sim::scenario>();
-            loaded.source = "<scenario>";
-          } else if (py::isinstance<py::str>(what) || py::hasattr(what, "__fspath__")) {
-            const std::string name = py::str(py::module_::import("os").attr("fspath")(what));
-            loaded = scenario_file::load(name, load_options_of(set, policy, seed, on_roads));
-          } else {
-            throw py::type_error("run(): expected a built-in name, a scenario file, a loaded_scenario or a scenario, "
-                                 "got " + py::repr(what).cast<std::string>());
-          }
+          const loaded_scenario loaded = loaded_from("run", what, set, policy, seed, on_roads);
           const sim::run_options options = run_options_of(jobs, map_columns, measure_cpu_time);
           const py::gil_scoped_release release;
           return run_whole(loaded, options);
@@ -474,6 +485,26 @@ void bind_simulation(py::module_& m) {
         py::arg("measure_cpu_time") = false,
         "Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its "
         "run_record: what `maneuvermap run` writes, as arrays. Releases the GIL.");
+
+  m.def("write_run",
+        [](const py::object& what, const std::filesystem::path& out_dir,
+           const std::optional<std::map<std::string, double>>& set, const std::optional<forecast_policy>& policy,
+           const std::optional<std::uint64_t>& seed, bool on_roads, std::size_t jobs, bool measure_cpu_time) {
+          const loaded_scenario loaded = loaded_from("write_run", what, set, policy, seed, on_roads);
+          if (auto error = sim::validation_error(loaded.scenario)) throw py::value_error(*error);
+          cli::run_settings settings;
+          settings.out_dir = out_dir;
+          settings.jobs = run_options_of(jobs, true, measure_cpu_time).jobs;
+          settings.measure_cpu_time = measure_cpu_time;
+          const py::gil_scoped_release release;
+          return cli::run_scenario(loaded, settings).files;
+        },
+        py::arg("scenario"), py::arg("out_dir"), py::kw_only(), py::arg("set") = py::none(),
+        py::arg("policy") = py::none(), py::arg("seed") = py::none(), py::arg("on_roads") = false, py::arg("jobs") = 1,
+        py::arg("measure_cpu_time") = false,
+        "Runs a scenario as `run` does and writes the files of `maneuvermap run --out out_dir` (trajectories.csv, "
+        "map.csv, decisions.csv, summary.json, scene.json; docs/outputs.md), which `maneuvermap plot` draws; "
+        "returns their paths. Releases the GIL.");
 }
 
 }  // namespace

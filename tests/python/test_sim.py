@@ -2,6 +2,7 @@
 import concurrent.futures
 import copy
 import csv
+import json
 import math
 import multiprocessing
 import pathlib
@@ -217,6 +218,31 @@ def test_a_scenario_built_in_python_equals_its_file_and_runs_as_it_does():
     faster = mm.sim.run(built)
     assert faster.x.tobytes() == mm.sim.run("s1-crossing", set={"b_kmh": 40.0}).x.tobytes()
     assert faster.x.tobytes() != ours.x.tobytes()
+
+
+def test_a_scenario_built_in_python_writes_the_files_of_maneuvermap_run_which_it_plots(cli, tmp_path):
+    ours, theirs = tmp_path / "python", tmp_path / "cli"
+    built = s1_crossing_built_in_python()
+    written = mm.sim.write_run(built, ours, jobs=2)
+    assert [pathlib.Path(f).name for f in written] == [
+        "trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"]
+    subprocess.run([cli, "run", "s1-crossing", "--out", str(theirs)], check=True, capture_output=True)
+    for name in ("trajectories.csv", "map.csv", "decisions.csv"):
+        assert (ours / name).read_bytes() == (theirs / name).read_bytes(), name
+    # The summary differs only where the file says more: its parameters, description and `meet`.
+    summary, file_summary = (json.loads((d / "summary.json").read_text()) for d in (ours, theirs))
+    assert summary["parameters"] == {} and file_summary["parameters"]["a_kmh"] == 40.0
+    for key in set(summary) | set(file_summary):
+        if key not in ("parameters", "description", "meetings"):
+            assert summary[key] == file_summary[key], key
+    subprocess.run([cli, "plot", str(ours)], check=True, capture_output=True)
+    assert (ours / "topdown.png").stat().st_size > 0 and (ours / "map.png").stat().st_size > 0
+    with pytest.raises(ValueError, match="apply when loading: pass a name or a file to write_run"):
+        mm.sim.write_run(built, ours, seed=3)
+    built.scripted_vehicles[0].shape = mm.rectangle(0.0, 1.8)
+    with pytest.raises(ValueError, match='scripted_vehicles\\[0\\] "B": shape.length = 0'):
+        mm.sim.write_run(built, tmp_path / "never")
+    assert not (tmp_path / "never").exists()
 
 
 def test_a_pedestrian_and_a_static_obstacle_added_in_python_take_part_in_the_run():

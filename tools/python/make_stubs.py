@@ -49,6 +49,8 @@ OBJECT_PARAMETERS = {
     (f"{PACKAGE}.sim", "load", "file_or_builtin"): "Union[str, os.PathLike[str]]",
     (f"{PACKAGE}.sim", "run", "scenario"):
         f"Union[str, os.PathLike[str], {PACKAGE}.sim.loaded_scenario, {PACKAGE}.sim.scenario]",
+    (f"{PACKAGE}.sim", "write_run", "scenario"):
+        f"Union[str, os.PathLike[str], {PACKAGE}.sim.loaded_scenario, {PACKAGE}.sim.scenario]",
 }
 used_object_parameters: set[tuple[str, str, str]] = set()
 # Attributes that an exception translator sets on the raised instance (python/src/*_bindings.cpp).

@@ -1141,3 +1141,7 @@ class stop_rule:
     """s_stop [m] on the path, ≥ the start arc length"""
     duration: Optional[float]
     """how long it stands [s] > 0; None: for ever"""
+
+def write_run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], out_dir: Union[str, os.PathLike[str]], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., measure_cpu_time: bool = ...) -> List[str]:
+    """Runs a scenario as `run` does and writes the files of `maneuvermap run --out out_dir` (trajectories.csv, map.csv, decisions.csv, summary.json, scene.json; docs/outputs.md), which `maneuvermap plot` draws; returns their paths. Releases the GIL."""
+    ...
