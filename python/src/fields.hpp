@@ -30,11 +30,10 @@ void set_fields(py::handle self, const py::kwargs& fields);
 /// `type_name(field=repr(value), ...)` over every field (every writable one with `writable_only`).
 std::string fields_repr(py::handle self, bool writable_only = false);
 
-/// Gives a bound value type a keyword constructor (`ego_state(speed=8.3)`), and `__repr__` and
-/// `__eq__` by fields (values compare equal when every field does). For the value types that hold a
-/// path (the scenario's agents), which do not pickle.
+/// Gives a bound value type a keyword constructor (`ego_state(speed=8.3)`): a name that is not a
+/// field is a TypeError listing the fields (`set_fields`).
 template <class T, class... Options>
-py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
+py::class_<T, Options...>& with_keyword_constructor(py::class_<T, Options...>& c) {
   c.def(py::init<>());
   c.def(py::init([](const py::kwargs& fields) {
           py::object value = py::cast(T{});
@@ -42,6 +41,15 @@ py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
           return value.cast<T>();
         }),
         "Every field from its keyword argument; the others keep their defaults.");
+  return c;
+}
+
+/// `with_keyword_constructor`, and `__repr__` and `__eq__` by fields (values compare equal when
+/// every field does). For the value types that hold a path (the scenario's agents), which do not
+/// pickle.
+template <class T, class... Options>
+py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
+  with_keyword_constructor(c);
   c.def("__repr__", [](py::handle self) { return fields_repr(self, true); });
   c.def("__eq__", [](py::handle self, py::handle other) {
     if (!py::isinstance(other, py::type::of(self))) return false;
@@ -87,15 +95,21 @@ py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
 
 /// Gives a bound list type `__eq__` by its elements (a list of value types without a C++ `==`), so
 /// that values holding such lists compare by their contents; the other side may be a Python list.
-/// Pickled as the list of its elements.
 template <class Vector, class... Options>
-py::class_<Vector, Options...>& compared_by_elements(py::class_<Vector, Options...>& c) {
+py::class_<Vector, Options...>& equal_by_elements(py::class_<Vector, Options...>& c) {
   c.def("__eq__", [](py::handle self, py::handle other) {
     if (!py::isinstance<py::iterable>(other) || py::isinstance<py::str>(other)) return false;
     const auto as_list = [](py::handle items) { return py::list(py::reinterpret_borrow<py::object>(items)); };
     return as_list(self).equal(as_list(other));
   });
   c.attr("__hash__") = py::none();
+  return c;
+}
+
+/// `equal_by_elements`, and pickled as the list of its elements.
+template <class Vector, class... Options>
+py::class_<Vector, Options...>& compared_by_elements(py::class_<Vector, Options...>& c) {
+  equal_by_elements(c);
   c.def(py::pickle([](py::handle self) { return py::list(py::reinterpret_borrow<py::object>(self)); },
                    [](const py::list& items) {
                      Vector values;

@@ -62,11 +62,7 @@ py::array_t<double> path_points(const sim::path& p, double spacing) {
 template <class Agent>
 void agent_list(py::module_& m, const char* name) {
   auto list = py::bind_vector<std::vector<Agent>>(m, name);
-  list.def("__eq__", [](py::handle self, py::handle other) {
-    if (!py::isinstance<py::iterable>(other) || py::isinstance<py::str>(other)) return false;
-    return py::list(py::reinterpret_borrow<py::object>(self)).equal(py::list(py::reinterpret_borrow<py::object>(other)));
-  });
-  list.attr("__hash__") = py::none();
+  equal_by_elements(list);
   py::implicitly_convertible<py::list, std::vector<Agent>>();
 }
 
@@ -242,14 +238,7 @@ void bind_agents(py::module_& m) {
 
 void bind_scenario(py::module_& m) {
   py::class_<sim::scenario> s(m, "scenario", "Everything a run needs (change it before the run starts).");
-  copied_by_value(s);
-  s.def(py::init<>())
-      .def(py::init([](const py::kwargs& fields) {
-             py::object value = py::cast(sim::scenario{});
-             set_fields(value, fields);
-             return value.cast<sim::scenario>();
-           }),
-           "Every field from its keyword argument; the others keep their defaults.")
+  with_keyword_constructor(copied_by_value(s))
       .def_readwrite("name", &sim::scenario::name)
       .def_readwrite("description", &sim::scenario::description)
       .def_readwrite("duration", &sim::scenario::duration, "[s]")
