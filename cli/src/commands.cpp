@@ -202,13 +202,14 @@ std::string scenario_policy(const mm::sim::scenario& s) {
 
 run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run_settings& settings) {
   const mm::sim::scenario& s = loaded.scenario;
+  // First the simulation, which refuses an invalid scenario: then nothing has been written.
+  mm::sim::simulation sim(s, {settings.measure_cpu_time, settings.jobs});
   std::filesystem::create_directories(settings.out_dir);
   const auto file = [&](const char* name) { return settings.out_dir / name; };
   csv_file trajectories(file("trajectories.csv"), "t,agent,x,y,heading,speed,accel,curvature");
   csv_file map(file("map.csv"), "t,agent,tau,mi_brake,mi_accel,excluded");
   csv_file decisions(file("decisions.csv"), "t,agent,tau_bar,family,mode,ttc,cpu_us,robust");
 
-  mm::sim::simulation sim(s, {settings.measure_cpu_time, settings.jobs});
   std::size_t shown_step = 0;
   mm::sim::run(sim, [&](const mm::sim::simulation& now) {
     fmt::memory_buffer t;

@@ -491,7 +491,6 @@ void bind_simulation(py::module_& m) {
            const std::optional<std::map<std::string, double>>& set, const std::optional<forecast_policy>& policy,
            const std::optional<std::uint64_t>& seed, bool on_roads, std::size_t jobs, bool measure_cpu_time) {
           const loaded_scenario loaded = loaded_from("write_run", what, set, policy, seed, on_roads);
-          if (auto error = sim::validation_error(loaded.scenario)) throw py::value_error(*error);
           cli::run_settings settings;
           settings.out_dir = out_dir;
           settings.jobs = run_options_of(jobs, true, measure_cpu_time).jobs;

@@ -40,7 +40,8 @@ struct run_outcome {
 /// Runs `loaded` and writes trajectories.csv, map.csv, decisions.csv, summary.json and
 /// scene.json into `settings.out_dir` (docs/outputs.md). Without CPU timing the files are a
 /// function of the scenario, its parameters and its seed alone (byte-identical on every run).
-/// Throws std::runtime_error when a file cannot be written.
+/// Throws std::invalid_argument (`mm::sim::validation_error`) before writing anything when the
+/// scenario is invalid, std::runtime_error when a file cannot be written.
 run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run_settings& settings);
 
 /// The §12 metrics as a small aligned table, one row per planning vehicle (`maneuvermap run`).
