@@ -10,6 +10,8 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <cerrno>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -24,6 +26,7 @@
 #include "mm/commonroad/reader.hpp"
 #include "mm/planner.hpp"
 #include "mm/scenario_file/builtin.hpp"
+#include "mm/scenario_file/writer.hpp"
 #include "mm/sim/memory.hpp"
 #include "output_files.hpp"
 
@@ -164,6 +167,30 @@ int validate_command(const scenario_options& o) {
                              mm::cli::fixed(m.second_distance, 3), mm::cli::fixed(m.second_travel, 3),
                              mm::cli::fixed(m.lag, 3), mm::cli::fixed(m.first_start, 3), mm::cli::fixed(m.second_start, 3));
   }
+  return exit_ok;
+}
+
+/// `scenario_text(s)` to `file`, or to standard output for "" or "-"; input_error when no file
+/// can state `s` or the file cannot be written.
+void write_scenario(const sf::loaded_scenario& s, const std::string& file) {
+  std::string text;
+  try {
+    text = sf::scenario_text(s);
+  } catch (const std::invalid_argument& e) {
+    throw mm::cli::input_error(e.what());
+  }
+  if (file.empty() || file == "-") {
+    std::cout << text;
+    return;
+  }
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) throw mm::cli::input_error(file + ": cannot write the file: " + std::strerror(errno));
+}
+
+int resolve_command(const scenario_options& o, const std::string& out) {
+  write_scenario(load(o), out);
   return exit_ok;
 }
 
@@ -349,6 +376,7 @@ struct replay_command_options {
   bool reactive = false;
   std::string out;
   bool plots = false;
+  std::string scenario_out;
 };
 
 int replay_command(const replay_command_options& o) {
@@ -369,6 +397,7 @@ int replay_command(const replay_command_options& o) {
       throw mm::commonroad::measure_error(o.file + ": " + e.what());
     }
   }();
+  if (!o.scenario_out.empty()) write_scenario(loaded, o.scenario_out);
   const std::string name = std::filesystem::path(o.file).stem().string();
   mm::cli::run_settings settings;
   settings.out_dir = o.out.empty() ? std::filesystem::path("out") / (name + "-replay") : std::filesystem::path(o.out);
@@ -402,6 +431,15 @@ int main(int argc, char** argv) {
   scenario_options validate_options;
   CLI::App* validate = app.add_subcommand("validate", "Check a scenario file; exit 0 if valid, 2 if not");
   add_scenario_options(*validate, validate_options, false);
+
+  scenario_options resolve_options;
+  std::string resolve_out;
+  CLI::App* resolve = app.add_subcommand(
+      "resolve",
+      "Write a scenario as the simulator runs it: every field given, SI units, parameters, defaults and meetings "
+      "resolved; the file runs exactly as the scenario does");
+  add_scenario_options(*resolve, resolve_options, true);
+  resolve->add_option("--out,-o", resolve_out, "The file to write (default: standard output)")->type_name("FILE");
 
   scenario_options run_options;
   std::string run_out;
@@ -514,6 +552,9 @@ int main(int argc, char** argv) {
                    "following, docs/commonroad.md)");
   replay->add_option("--out", replay_options.out, "Output directory (default out/<file name>-replay)")
       ->type_name("DIR");
+  replay->add_option("--write-scenario", replay_options.scenario_out,
+                     "Also write the replay as a scenario file (maneuvermap resolve's form) that runs as it does")
+      ->type_name("FILE.yaml");
   replay->add_flag("--plots", replay_options.plots, "Then draw the run's figures into its output directory");
 
   try {
@@ -527,6 +568,7 @@ int main(int argc, char** argv) {
   try {
     if (list->parsed()) return list_command();
     if (validate->parsed()) return validate_command(validate_options);
+    if (resolve->parsed()) return resolve_command(resolve_options, resolve_out);
     if (run->parsed()) return run_command(run_options, run_out, timing, run_plots, run_jobs);
     if (sweep->parsed()) return sweep_command(sweep_opts);
     if (plot->parsed()) return plot_command(plot_target, plot_out);

@@ -16,6 +16,8 @@
 
 #include "fields.hpp"
 #include "mm/drivable_area.hpp"
+#include "mm/scenario_file/loader.hpp"
+#include "mm/scenario_file/writer.hpp"
 #include "mm/sim/follower.hpp"
 #include "mm/sim/path.hpp"
 #include "mm/sim/scripted.hpp"
@@ -23,23 +25,6 @@
 namespace mm::python {
 
 namespace {
-
-/// Two paths are equal when their segments are: the same starts, lengths and curvatures.
-bool same_path(const sim::path& a, const sim::path& b) {
-  const auto sa = a.segments();
-  const auto sb = b.segments();
-  if (sa.size() != sb.size()) return false;
-  for (std::size_t i = 0; i < sa.size(); ++i) {
-    if (sa[i].start.position.x != sb[i].start.position.x || sa[i].start.position.y != sb[i].start.position.y ||
-        sa[i].start.heading != sb[i].start.heading || sa[i].length != sb[i].length ||
-        sa[i].curvature != sb[i].curvature || sa[i].start_arc_length != sb[i].start_arc_length) {
-      return false;
-    }
-  }
-  const pose ea = a.end_pose();
-  const pose eb = b.end_pose();
-  return ea.position.x == eb.position.x && ea.position.y == eb.position.y && ea.heading == eb.heading;
-}
 
 /// Points of `p` about `spacing` [m] apart, both ends included, as a (points, 2) array.
 py::array_t<double> path_points(const sim::path& p, double spacing) {
@@ -58,10 +43,14 @@ py::array_t<double> path_points(const sim::path& p, double spacing) {
 }
 
 /// The list-like view of a scenario's agents of one kind (`scenario.pedestrians.append(p)`), which
-/// a Python list may be assigned to, equal to another list of equal agents.
+/// a Python list may be assigned to, equal to another list of equal agents. The agents' C++ `==`
+/// gives it `count`, `remove` and `in`; its `__eq__` is `equal_by_elements`', which takes any
+/// object (pybind11's takes only another list of agents).
 template <class Agent>
 void agent_list(py::module_& m, const char* name) {
   auto list = py::bind_vector<std::vector<Agent>>(m, name);
+  py::delattr(list, "__eq__");
+  py::delattr(list, "__ne__");
   equal_by_elements(list);
   py::implicitly_convertible<py::list, std::vector<Agent>>();
 }
@@ -94,6 +83,8 @@ void bind_path(py::module_& m) {
            "Appends an arc of `radius` [m] > 0 turning by `angle` [rad] (positive left); returns the path.")
       .def("line_to", &sim::path::line_to, py::arg("point"), py::return_value_policy::reference_internal,
            "Appends a straight segment to `point` [m] (a corner unless it lies straight ahead); returns the path.")
+      .def("curve", &sim::path::curve, py::arg("length"), py::arg("curvature"), py::return_value_policy::reference_internal,
+           "Appends `length` [m] > 0 of constant `curvature` [1/m] (positive left, 0 straight); returns the path.")
       .def_property_readonly("length", &sim::path::length, "L [m]")
       .def_property_readonly("end_pose", &sim::path::end_pose, "where the next segment starts")
       .def("empty", &sim::path::empty)
@@ -110,7 +101,7 @@ void bind_path(py::module_& m) {
           py::arg("arc_length"), "Position, heading and curvature at arc length s [m] (straight beyond the ends).")
       .def("points", &path_points, py::arg("spacing") = 0.5, "The path at about `spacing` [m], shape (points, 2) [m]")
       .def("__eq__", [](const sim::path& a, py::handle b) {
-        return py::isinstance<sim::path>(b) && same_path(a, b.cast<const sim::path&>());
+        return py::isinstance<sim::path>(b) && a == b.cast<const sim::path&>();
       })
       .def("__repr__", [](const sim::path& path) {
         return "path(" + std::to_string(path.segments().size()) + " segments, length=" +
@@ -262,6 +253,11 @@ void bind_scenario(py::module_& m) {
           "the road constraint of every planning vehicle (spec §5), or None")
       .def("validation_error", [](const sim::scenario& sc) { return sim::validation_error(sc); },
            "The first problem, naming the agent and the field, or None.")
+      .def("__eq__", [](const sim::scenario& a, py::handle b) {
+        return py::isinstance<sim::scenario>(b) && a == b.cast<const sim::scenario&>();
+      })
+      .def(py::pickle([](const sim::scenario& sc) { return scenario_file::scenario_text(sc); },
+                      [](const std::string& text) { return scenario_file::load_text(text, "<pickled scenario>").scenario; }))
       .def("__repr__", [](const sim::scenario& sc) {
         return "scenario(name=" + py::repr(py::str(sc.name)).cast<std::string>() + ", " +
                std::to_string(sc.planning_vehicles.size()) + " planning vehicles, " +
@@ -269,6 +265,7 @@ void bind_scenario(py::module_& m) {
                std::to_string(sc.pedestrians.size()) + " pedestrians, " +
                std::to_string(sc.static_obstacles.size()) + " static obstacles)";
       });
+  s.attr("__hash__") = py::none();
 }
 
 }  // namespace

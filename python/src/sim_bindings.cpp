@@ -20,6 +20,7 @@
 #include "mm/cli/commands.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/scenario_file/loader.hpp"
+#include "mm/scenario_file/writer.hpp"
 #include "mm/sim/simulation.hpp"
 
 namespace mm::python {
@@ -257,6 +258,19 @@ void bind_scenarios(py::module_& m) {
         py::arg("text"), py::arg("source") = "<text>", py::kw_only(), py::arg("set") = py::none(),
         py::arg("policy") = py::none(), py::arg("seed") = py::none(), py::arg("on_roads") = false,
         "As load, from the YAML text itself.");
+  m.def("scenario_text", py::overload_cast<const sim::scenario&>(&scenario_file::scenario_text), py::arg("scenario"),
+        "The scenario file (YAML) that loads as `scenario`, bit for bit: every field given, SI units, start times "
+        "resolved (docs/scenario-format.md). ValueError when the scenario is invalid or no file can state it.");
+  m.def("scenario_text", py::overload_cast<const loaded_scenario&>(&scenario_file::scenario_text), py::arg("scenario"),
+        "As scenario_text(scenario.scenario), with the roundabout and roads the file declared (drawn, not run).");
+  m.def("write_scenario",
+        py::overload_cast<const sim::scenario&, const std::filesystem::path&>(&scenario_file::write_file),
+        py::arg("scenario"), py::arg("file"),
+        "Writes scenario_text(scenario) to `file`, which `maneuvermap run FILE` and mm.sim.load then run and load as "
+        "this scenario.");
+  m.def("write_scenario",
+        py::overload_cast<const loaded_scenario&, const std::filesystem::path&>(&scenario_file::write_file),
+        py::arg("scenario"), py::arg("file"), "Writes scenario_text(scenario) of a loaded scenario to `file`.");
 }
 
 void bind_simulation(py::module_& m) {

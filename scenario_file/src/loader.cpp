@@ -97,7 +97,8 @@ const std::vector<std::string> common_agent_keys{"name", "kind", "path", "start_
 const std::vector<std::string> planning_keys = concat(
     common_agent_keys,
     concat(concat(keys_of("initial_speed", speed_units), keys_of("desired_speed", speed_units)),
-           {"start_lateral_offset_m", "footprint", "limits", "planner", "follower", "avoidance", "planning_period_steps"}));
+           {"desired_speed_profile", "start_lateral_offset_m", "footprint", "limits", "planner", "follower", "avoidance",
+            "planning_period_steps"}));
 const std::vector<std::string> motion_keys = concat(
     common_agent_keys, concat(keys_of("speed", speed_units), {"speed_profile", "stop"}));
 const std::vector<std::string> scripted_keys = concat(motion_keys, {"footprint", "car_following"});
@@ -260,7 +261,7 @@ class mapper {
   /// `drivable_area:` (spec §5's road constraint): the file's roads, each as wide as its width, and
   /// further polygons, into `scenario::drivable_area`.
   void read_drivable_area(const map_view& area) {
-    area.allow({"roads", "roundabout", "polygons_m"});
+    area.allow({"roads", "roundabout", "polygons_m", "open_edges"});
     std::vector<std::vector<vec2>>& polygons = result_.scenario.drivable_area.polygons;
     if (auto r = area.get("roads"); r && read_bool(ctx_, *r)) {
       if (result_.roads.empty()) {
@@ -269,6 +270,7 @@ class mapper {
       for (const road& each : result_.roads) add_to_drivable_area(road_polygons(each));
     }
     if (auto r = area.get("roundabout")) read_roundabout_lanes(*r);
+    const std::size_t first_own = polygons.size();
     if (auto p = area.get("polygons_m")) {
       for (const field& item : read_list(ctx_, *p)) {
         std::vector<vec2> polygon = read_points(ctx_, item, 3, mm::largest_drivable_vertex_count);
@@ -279,10 +281,33 @@ class mapper {
         polygons.push_back(std::move(polygon));
       }
     }
+    if (auto e = area.get("open_edges")) read_open_edges(*e, first_own);
     if (polygons.empty()) {
       fail_value(ctx_, area.self(),
                  "roads: true (with roads: in the file), roundabout: true (with roundabout: in the file) or "
                  "polygons_m: a list of polygons");
+    }
+  }
+
+  /// `open_edges: [[polygon, edge], ...]`: edges of `polygons_m` (the polygon's index in that list,
+  /// the edge from its vertex `edge` to the next) that lead on beyond the map, as a road's ends do.
+  void read_open_edges(const field& f, std::size_t first_own) {
+    mm::drivable_outline& outline = result_.scenario.drivable_area;
+    const std::size_t own = outline.polygons.size() - first_own;
+    for (const field& item : read_list(ctx_, f)) {
+      if (!item.node.IsSequence() || item.node.size() != 2) {
+        fail_value(ctx_, item, "[polygon, edge]: a polygon of polygons_m (from 0) and one of its edges (from 0)");
+      }
+      const std::vector<field> pair = read_list(ctx_, item);
+      if (own == 0) fail_value(ctx_, pair[0], "an index into polygons_m, but it lists no polygons");
+      const std::size_t polygon = read_integer(ctx_, pair[0], own - 1);
+      const std::size_t vertices = outline.polygons[first_own + polygon].size();
+      const std::size_t edge = read_integer(ctx_, pair[1], vertices - 1);
+      const mm::polygon_edge open{first_own + polygon, edge};
+      if (std::find(outline.open_edges.begin(), outline.open_edges.end(), open) != outline.open_edges.end()) {
+        fail_value(ctx_, item, "an edge not listed before");
+      }
+      outline.open_edges.push_back(open);
     }
   }
 
@@ -459,6 +484,7 @@ class mapper {
     out.before_start = read_before_start(v);
     out.desired_speed = v.required_quantity("desired_speed", speed_units, range::speed);
     out.initial_speed = v.quantity_or("initial_speed", speed_units, out.desired_speed, range::speed);
+    if (auto f = v.get("desired_speed_profile")) out.desired_speed_profile = read_knots(*f);
     out.shape = read_footprint(v);
     out.limits = read_limits(v.child("limits"));
     out.planner = read_planner(v.child("planner"));
@@ -488,7 +514,7 @@ class mapper {
   mm::planner_config read_planner(const map_view& v) const {
     v.allow({"policy", "forecast_time_s", "safety_margin_m", "urgent_steering", "displacement_horizon_s",
              "collision_window_s", "forecast_step_s", "forecast_count", "history_window_s", "resolution",
-             "max_time_step_s", "effort_weights", "assignment_search", "max_exhaustive_assignments"});
+             "max_time_step_s", "effort_weights", "assignment_search", "max_exhaustive_assignments", "map_column"});
     mm::planner_config c;
     if (auto f = v.get("policy")) {
       constexpr std::array kinds{mm::forecast_policy_kind::adjustable, mm::forecast_policy_kind::constant,
@@ -526,6 +552,7 @@ class mapper {
     if (auto f = v.get("max_exhaustive_assignments")) {
       c.max_exhaustive_assignments = read_integer(ctx_, *f, std::numeric_limits<std::uint32_t>::max());
     }
+    if (auto f = v.get("map_column")) c.map_column = read_bool(ctx_, *f);
     return c;
   }
 
@@ -576,6 +603,23 @@ class mapper {
     return k;
   }
 
+  /// A list of knots `{time_s, speed_kmh}` at increasing times.
+  mm::sim::speed_profile read_knots(const field& f) const {
+    const std::vector<field> knots = read_list(ctx_, f);
+    if (knots.empty()) fail_value(ctx_, f, "at least one knot {time_s, speed_kmh}");
+    mm::sim::speed_profile profile;
+    for (const field& k : knots) {
+      const map_view kv(ctx_, {k});
+      kv.allow(concat({"time_s"}, keys_of("speed", speed_units)));
+      profile.knots.push_back({kv.required_quantity("time", {seconds}, range::non_negative),
+                               kv.required_quantity("speed", speed_units, range::speed)});
+      if (profile.knots.size() > 1 && !(profile.knots.back().time > profile.knots[profile.knots.size() - 2].time)) {
+        fail_value(ctx_, kv.require("time_s"), "a time after the previous knot's");
+      }
+    }
+    return profile;
+  }
+
   mm::sim::scripted_motion read_motion(const map_view& v) const {
     mm::sim::scripted_motion m;
     m.path = read_path(v.require("path"));
@@ -585,18 +629,7 @@ class mapper {
     const std::optional<field> speed = v.one_of({"speed_kmh", "speed_mps", "speed_profile"});
     if (!speed) ctx_.fail(v.self().node, v.self().path, "missing required field speed_kmh, speed_mps or speed_profile");
     if (speed->key == "speed_profile") {
-      const std::vector<field> knots = read_list(ctx_, *speed);
-      if (knots.empty()) fail_value(ctx_, *speed, "at least one knot {time_s, speed_kmh}");
-      m.speed.knots.clear();
-      for (const field& k : knots) {
-        const map_view kv(ctx_, {k});
-        kv.allow(concat({"time_s"}, keys_of("speed", speed_units)));
-        m.speed.knots.push_back({kv.required_quantity("time", {seconds}, range::non_negative),
-                                 kv.required_quantity("speed", speed_units, range::speed)});
-        if (m.speed.knots.size() > 1 && !(m.speed.knots.back().time > m.speed.knots[m.speed.knots.size() - 2].time)) {
-          fail_value(ctx_, kv.require("time_s"), "a time after the previous knot's");
-        }
-      }
+      m.speed = read_knots(*speed);
     } else {
       m.speed = mm::sim::speed_profile::constant(*v.quantity("speed", speed_units, range::speed));
     }
@@ -689,8 +722,11 @@ class mapper {
 
   void append_segment(path& p, const field& item) const {
     const map_view s(ctx_, {item});
-    s.allow({"straight_m", "turn", "line_to_m"});
-    if (item.node.size() != 1) fail_value(ctx_, item, "one of straight_m: L, turn: {radius_m, angle_deg}, line_to_m: [x, y]");
+    s.allow({"straight_m", "turn", "line_to_m", "curve"});
+    if (item.node.size() != 1) {
+      fail_value(ctx_, item,
+                 "one of straight_m: L, turn: {radius_m, angle_deg}, line_to_m: [x, y], curve: {length_m, curvature_per_m}");
+    }
     try {
       if (auto f = s.get("straight_m")) {
         p.straight(read_number(ctx_, *f, "m", range::positive));
@@ -705,6 +741,10 @@ class mapper {
         const vec2 point = read_point(ctx_, *l);
         if (point == p.end_pose().position) fail_value(ctx_, *l, "a point other than the current end of the path");
         p.line_to(point);
+      } else if (auto c = s.get("curve")) {
+        const map_view cv(ctx_, {*c});
+        cv.allow({"length_m", "curvature_per_m"});
+        p.curve(cv.required_quantity("length", {metres}, range::positive), cv.required_quantity("curvature", {per_metre}));
       }
     } catch (const std::invalid_argument& e) {
       ctx_.fail(item.node, item.path, e.what());

@@ -31,6 +31,7 @@ inline constexpr unit kmh{"_kmh", 1.0 / 3.6, "km/h"};
 inline constexpr unit mps{"_mps", 1.0, "m/s"};
 inline constexpr unit mps2{"_mps2", 1.0, "m/s²"};
 inline constexpr unit per_second{"_per_s", 1.0, "1/s"};
+inline constexpr unit per_metre{"_per_m", 1.0, "1/m"};
 inline constexpr unit degrees{"_deg", 0.017453292519943295, "°"};
 inline constexpr unit radians{"_rad", 1.0, "rad"};
 

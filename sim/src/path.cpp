@@ -1,6 +1,8 @@
 #include "mm/sim/path.hpp"
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -11,9 +13,18 @@
 namespace mm::sim {
 namespace {
 
+/// The shortest decimal text that reads back as `value`.
+std::string text(double value) {
+  std::array<char, 32> buffer{};
+  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
+  return std::string(buffer.data(), result.ptr);
+}
+
+std::string text(vec2 point) { return "[" + text(point.x) + ", " + text(point.y) + "]"; }
+
 void require_positive(double value, const char* what) {
   if (!(std::isfinite(value) && value > 0.0)) {
-    throw std::invalid_argument(std::string("path: ") + what + " = " + std::to_string(value) +
+    throw std::invalid_argument(std::string("path: ") + what + " = " + text(value) +
                                 ": expected a positive finite number");
   }
 }
@@ -86,7 +97,7 @@ path& path::straight(double length) {
 path& path::turn(double radius, double angle) {
   require_positive(radius, "turn radius");
   if (!std::isfinite(angle) || angle == 0.0) {
-    throw std::invalid_argument("path: turn angle = " + std::to_string(angle) + ": expected a finite non-zero angle");
+    throw std::invalid_argument("path: turn angle = " + text(angle) + ": expected a finite non-zero angle");
   }
   const double curvature = (angle > 0.0 ? 1.0 : -1.0) / radius;
   const path_segment seg{end_, radius * std::abs(angle), curvature, length()};
@@ -100,11 +111,24 @@ path& path::line_to(vec2 point) {
   const vec2 d = point - end_.position;
   const double n = norm(d);
   if (!(std::isfinite(n) && n > 0.0)) {
-    throw std::invalid_argument("path: line_to a point that is not finite or equals the current end point");
+    throw std::invalid_argument("path: line_to " + text(point) + ": expected a finite point other than the current end " +
+                                text(end_.position));
   }
   const double heading = std::atan2(d.y, d.x);
   segments_.push_back({{end_.position, heading}, n, 0.0, length()});
   end_ = {point, heading};
+  return *this;
+}
+
+path& path::curve(double length, double curvature) {
+  require_positive(length, "curve length");
+  if (!std::isfinite(curvature)) {
+    throw std::invalid_argument("path: curve curvature = " + text(curvature) + ": expected a finite number [1/m]");
+  }
+  const path_segment seg{end_, length, curvature, this->length()};
+  segments_.push_back(seg);
+  const mm::pose end = segment_pose(seg, length);
+  end_ = {end.position, wrap_angle(end.heading)};
   return *this;
 }
 

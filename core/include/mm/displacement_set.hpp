@@ -19,6 +19,8 @@ std::string_view to_string(family f);
 struct sampling_resolution {
   std::size_t accelerations = 14;  ///< nodes per family in a (≥ 2), from the limit to a = 0
   std::size_t curvatures = 19;     ///< nodes in κ (≥ 1), from −κ_max to κ_max
+
+  friend bool operator==(const sampling_resolution&, const sampling_resolution&) = default;
 };
 
 /// Area element of the end-point map (s, κ) ↦ arc_point(κ, s) (spec §3):

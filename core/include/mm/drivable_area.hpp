@@ -42,6 +42,8 @@ struct drivable_outline {
   std::vector<std::vector<vec2>> polygons;
   std::vector<polygon_edge> open_edges;
   bool empty() const { return polygons.empty(); }
+
+  friend bool operator==(const drivable_outline&, const drivable_outline&) = default;
 };
 
 /// Gaps in a drivable area narrower than this are closed [m]: two polygons whose edges

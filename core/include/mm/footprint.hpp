@@ -15,6 +15,8 @@ namespace mm {
 struct rectangle {
   double length = 4.5;
   double width = 1.8;
+
+  friend bool operator==(const rectangle&, const rectangle&) = default;
 };
 
 /// Disc centred on the reference point (pedestrians; spec §2 default radius 0.35 m).

@@ -21,6 +21,8 @@ enum class forecast_policy_kind : std::uint8_t {
 struct forecast_policy {
   forecast_policy_kind kind = forecast_policy_kind::adjustable;
   double constant_forecast_time = 1.0;  ///< τ [s] of the constant policy; must lie on the forecast grid
+
+  friend bool operator==(const forecast_policy&, const forecast_policy&) = default;
 };
 
 std::string_view to_string(forecast_policy_kind kind);

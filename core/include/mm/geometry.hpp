@@ -44,6 +44,8 @@ constexpr vec2 rotated(vec2 v, double c, double s) { return {c * v.x - s * v.y, 
 struct pose {
   vec2 position;
   double heading = 0.0;
+
+  friend bool operator==(const pose&, const pose&) = default;
 };
 
 /// `local` (a point in the frame of `frame`: x forward, y left) expressed in the world frame.

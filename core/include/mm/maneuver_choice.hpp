@@ -26,6 +26,8 @@ std::string_view to_string(planning_mode mode);
 struct effort_weights {
   double longitudinal = 1.0;  ///< w_lon [s⁴/m²]
   double lateral = 1.0;       ///< w_lat [s⁴/m²]
+
+  friend bool operator==(const effort_weights&, const effort_weights&) = default;
 };
 
 /// J(u) = w_lon (a − a_nom)² + w_lat (v0² (κ − κ_nom))² [m²/s⁴] (spec §8): the squared change of

@@ -38,6 +38,8 @@ struct planner_config {
   /// mode, τ̄, family, the selected indices, TTC, `excluded`) is the same, bit for bit. For runs whose
   /// maps nobody reads, such as the runs of a sweep. `record_samples` computes the column anyway.
   bool map_column = true;
+
+  friend bool operator==(const planner_config&, const planner_config&) = default;
 };
 
 /// The forecast grid τ_i = i·Δτ [s] (spec §4).

@@ -23,6 +23,8 @@ struct car_following_config {
   /// oncoming traffic is the planner's to avoid, not the driver's to follow (a vehicle that follows
   /// whatever enters its corridor stops for every merging one, and a busy roundabout jams).
   double max_heading_difference = 0.785398163397448;  // 45°
+
+  friend bool operator==(const car_following_config&, const car_following_config&) = default;
 };
 
 /// The road user a follower keeps its distance to.
@@ -54,6 +56,8 @@ struct scripted_car_following {
   /// (planning vehicles, and scripted vehicles that lag behind theirs), for scripts whose
   /// interactions with each other are already in them, as a recording's are (a reactive replay).
   bool follows_scripted = true;
+
+  friend bool operator==(const scripted_car_following&, const scripted_car_following&) = default;
 };
 
 /// The acceleration of a scripted vehicle at arc length s [m] and speed v [m/s] that lags behind
@@ -77,6 +81,8 @@ struct follower_config {
   /// Keeping a distance to the road user ahead (`car_following_acceleration`); none: off, as in
   /// spec §8.
   std::optional<car_following_config> car_following;
+
+  friend bool operator==(const follower_config&, const follower_config&) = default;
 };
 
 /// Lookahead distance L_d = max(L_min, k_L·v) [m].

@@ -18,6 +18,8 @@ struct path_segment {
   double length = 0.0;            ///< [m], > 0
   double curvature = 0.0;         ///< κ [1/m], positive turning left (counter-clockwise)
   double start_arc_length = 0.0;  ///< arc length of the path at `start` [m]
+
+  friend bool operator==(const path_segment&, const path_segment&) = default;
 };
 
 /// The geometry of a path at one arc length.
@@ -72,6 +74,14 @@ class path {
   /// Appends a straight segment from the current end to `point` (≠ the end): a corner unless
   /// `point` lies straight ahead.
   path& line_to(vec2 point);
+
+  /// Appends a segment of constant `curvature` κ [1/m] (positive = left; 0: straight) and `length`
+  /// [m] > 0, tangent to the current end: what `turn(1/|κ|, ±κ·length)` and `straight(length)` add,
+  /// given by the two numbers a segment stores, so that a written path reads back bit for bit.
+  path& curve(double length, double curvature);
+
+  /// Equal segments and end: the same path, bit for bit.
+  friend bool operator==(const path&, const path&) = default;
 
   bool empty() const { return segments_.empty(); }
   /// L [m].

@@ -36,6 +36,8 @@ struct sensing_noise {
   double position_sd = 0.0;  ///< σ of each position coordinate, x and y [m], ≥ 0
   double heading_sd = 0.0;   ///< σ of the heading [rad], ≥ 0
   double speed_sd = 0.0;     ///< σ of the speed [m/s], ≥ 0
+
+  friend bool operator==(const sensing_noise&, const sensing_noise&) = default;
 };
 
 /// A vehicle that follows its reference path and avoids the others with `mm::plan` (the ego A of
@@ -64,6 +66,8 @@ struct planning_vehicle {
   bool avoidance = true;
   /// Plan every k-th simulation step (k ≥ 1), holding the last command in between.
   std::size_t planning_period = 1;
+
+  friend bool operator==(const planning_vehicle&, const planning_vehicle&) = default;
 };
 
 /// A vehicle that replays `motion`, ignoring every other agent (the paper's B), or, with car
@@ -75,6 +79,8 @@ struct scripted_vehicle {
   /// Keeping a distance to the road user ahead, lagging behind `motion` where it must (an
   /// addition to spec §8); none: exactly `motion`, as the paper's B.
   std::optional<scripted_car_following> car_following;
+
+  friend bool operator==(const scripted_vehicle&, const scripted_vehicle&) = default;
 };
 
 /// A pedestrian that replays `motion` (usually a constant speed and perhaps a stop at the kerb).
@@ -82,6 +88,8 @@ struct pedestrian {
   std::string name;
   scripted_motion motion;
   double radius = 0.35;  ///< disc footprint radius [m] (spec §2)
+
+  friend bool operator==(const pedestrian&, const pedestrian&) = default;
 };
 
 /// A static obstacle: a convex polygon in world coordinates, 3 to `mm::max_polygon_vertices`
@@ -89,6 +97,8 @@ struct pedestrian {
 struct static_obstacle {
   std::string name;
   std::vector<vec2> vertices;  ///< [m]
+
+  friend bool operator==(const static_obstacle&, const static_obstacle&) = default;
 };
 
 /// Everything a run needs. Agents get ids in this order: planning vehicles, scripted vehicles,
@@ -108,6 +118,8 @@ struct scenario {
   /// frame [m], with their open edges (`mm::drivable_area`). Every planning vehicle that starts a
   /// step on it keeps its maneuvers on it within T_h. Empty: no road constraint.
   mm::drivable_outline drivable_area;
+
+  friend bool operator==(const scenario&, const scenario&) = default;
 };
 
 /// The first problem of `s`, naming the agent and the field, e.g.

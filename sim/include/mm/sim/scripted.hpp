@@ -14,6 +14,8 @@ namespace mm::sim {
 struct speed_knot {
   double time = 0.0;   ///< on the agent's own clock: seconds since its start, stops not counted [s], ≥ 0
   double speed = 0.0;  ///< [m/s], ≥ 0
+
+  friend bool operator==(const speed_knot&, const speed_knot&) = default;
 };
 
 /// Speed as a piecewise-linear function of the agent's own clock τ: linear between knots, the
@@ -24,6 +26,8 @@ struct speed_profile {
 
   /// A constant speed v [m/s].
   static speed_profile constant(double speed) { return {{{0.0, speed}}}; }
+
+  friend bool operator==(const speed_profile&, const speed_profile&) = default;
 };
 
 /// v(τ) [m/s]; τ < 0 counts as 0.
@@ -51,6 +55,8 @@ std::string_view to_string(before_start_behaviour behaviour);
 struct stop_rule {
   double arc_length = 0.0;         ///< s_stop [m] on the path, ≥ the start arc length
   std::optional<double> duration;  ///< how long the agent stands [s], > 0; none: for ever
+
+  friend bool operator==(const stop_rule&, const stop_rule&) = default;
 };
 
 /// Motion of a scripted agent (scripted vehicle or pedestrian): it follows `path` exactly (no
@@ -68,6 +74,8 @@ struct scripted_motion {
   before_start_behaviour before_start = before_start_behaviour::absent;
   speed_profile speed = speed_profile::constant(0.0);
   std::optional<stop_rule> stop;
+
+  friend bool operator==(const scripted_motion&, const scripted_motion&) = default;
 };
 
 /// Where a scripted agent is in its life.

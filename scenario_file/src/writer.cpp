@@ -1,0 +1,428 @@
+#include "mm/scenario_file/writer.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <stdexcept>
+#include <string_view>
+
+#include "mm/scenario_file/loader.hpp"
+#include "reader.hpp"
+
+namespace mm::scenario_file {
+namespace {
+
+using detail::number_text;
+using mm::sim::path;
+
+/// A YAML emitter that writes the format's values: numbers in their shortest exact form, points
+/// as `[x, y]`.
+class document {
+ public:
+  document() {
+    out_.SetIndent(2);
+    out_.SetMapFormat(YAML::Block);
+  }
+
+  std::string text() const { return std::string(out_.c_str()) + "\n"; }
+
+  void comment(const std::string& text) { out_ << YAML::Comment(text); }
+  void begin_map() { out_ << YAML::BeginMap; }
+  void begin_flow_map() { out_ << YAML::Flow << YAML::BeginMap; }
+  void end_map() { out_ << YAML::EndMap; }
+  void begin_list() { out_ << YAML::BeginSeq; }
+  void begin_flow_list() { out_ << YAML::Flow << YAML::BeginSeq; }
+  void end_list() { out_ << YAML::EndSeq; }
+  void key(std::string_view k) { out_ << YAML::Key << std::string(k) << YAML::Value; }
+
+  void number(double value) { out_ << number_text(value); }
+  void integer(std::uint64_t value) { out_ << std::to_string(value); }
+  void boolean(bool value) { out_ << (value ? "true" : "false"); }
+  void text(const std::string& value) { out_ << YAML::DoubleQuoted << value; }
+  void word(std::string_view value) { out_ << std::string(value); }
+  void point(vec2 p) {
+    begin_flow_list();
+    number(p.x);
+    number(p.y);
+    end_list();
+  }
+  void points(const std::vector<vec2>& ps) {
+    begin_flow_list();
+    for (vec2 p : ps) point(p);
+    end_list();
+  }
+
+  void number(std::string_view k, double value) {
+    key(k);
+    number(value);
+  }
+  void integer(std::string_view k, std::uint64_t value) {
+    key(k);
+    integer(value);
+  }
+  void boolean(std::string_view k, bool value) {
+    key(k);
+    boolean(value);
+  }
+
+ private:
+  YAML::Emitter out_;
+};
+
+std::string_view policy_kind_name(mm::forecast_policy_kind kind) {
+  switch (kind) {
+    case mm::forecast_policy_kind::adjustable: return "adj";
+    case mm::forecast_policy_kind::constant: return "const";
+    case mm::forecast_policy_kind::robust: return "robust";
+  }
+  return "adj";
+}
+
+/// The segments of `p` as the operations that rebuild it bit for bit from its first segment's
+/// start pose: `curve` for an arc, `straight_m` for a straight piece that continues the end pose,
+/// `line_to_m` for one that turns a corner (a polyline's, whose end is the next piece's start).
+void write_path(document& doc, const path& p) {
+  const std::span<const mm::sim::path_segment> segments = p.segments();
+  path rebuilt(segments.front().start);
+  doc.begin_map();
+  doc.key("start");
+  doc.begin_flow_map();
+  doc.key("position_m");
+  doc.point(segments.front().start.position);
+  doc.number("heading_rad", segments.front().start.heading);
+  doc.end_map();
+  doc.key("segments");
+  doc.begin_list();
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const mm::sim::path_segment& seg = segments[i];
+    const mm::pose end = i + 1 < segments.size() ? segments[i + 1].start : p.end_pose();
+    doc.begin_flow_map();
+    if (seg.curvature != 0.0) {
+      rebuilt.curve(seg.length, seg.curvature);
+      doc.key("curve");
+      doc.begin_flow_map();
+      doc.number("length_m", seg.length);
+      doc.number("curvature_per_m", seg.curvature);
+      doc.end_map();
+    } else if (path ahead = rebuilt; ahead.straight(seg.length).segments().back() == seg &&
+                                       ahead.end_pose().position == end.position) {
+      rebuilt = ahead;
+      doc.number("straight_m", seg.length);
+    } else {
+      rebuilt.line_to(end.position);
+      doc.key("line_to_m");
+      doc.point(end.position);
+    }
+    doc.end_map();
+  }
+  doc.end_list();
+  doc.end_map();
+  if (!(rebuilt == p)) throw std::logic_error("scenario_text: a path that its segments do not rebuild bit for bit");
+}
+
+void write_footprint(document& doc, const mm::rectangle& r) {
+  doc.key("footprint");
+  doc.begin_flow_map();
+  doc.number("length_m", r.length);
+  doc.number("width_m", r.width);
+  doc.end_map();
+}
+
+void write_knots(document& doc, const mm::sim::speed_profile& profile) {
+  doc.begin_list();
+  for (const mm::sim::speed_knot& k : profile.knots) {
+    doc.begin_flow_map();
+    doc.number("time_s", k.time);
+    doc.number("speed_mps", k.speed);
+    doc.end_map();
+  }
+  doc.end_list();
+}
+
+void write_common(document& doc, const std::string& name, std::string_view kind, const path& p, double start_arc_length,
+                  double start_time, mm::sim::before_start_behaviour before_start) {
+  doc.key("name");
+  doc.text(name);
+  doc.key("kind");
+  doc.word(kind);
+  doc.key("path");
+  write_path(doc, p);
+  doc.number("start_arc_length_m", start_arc_length);
+  doc.number("start_time_s", start_time);
+  doc.key("before_start");
+  doc.word(mm::sim::to_string(before_start));
+}
+
+void write_car_following(document& doc, const mm::sim::car_following_config& k) {
+  doc.number("time_gap_s", k.time_gap);
+  doc.number("jam_distance_m", k.jam_distance);
+  doc.number("corridor_half_width_m", k.corridor_half_width);
+  doc.number("max_heading_difference_rad", k.max_heading_difference);
+}
+
+void write_planner(document& doc, const mm::planner_config& c) {
+  doc.key("planner");
+  doc.begin_map();
+  doc.key("policy");
+  doc.word(policy_kind_name(c.policy.kind));
+  doc.number("forecast_time_s", c.policy.constant_forecast_time);
+  doc.number("safety_margin_m", c.safety_margin);
+  doc.boolean("urgent_steering", c.urgent_steering);
+  doc.number("displacement_horizon_s", c.displacement_horizon);
+  doc.number("collision_window_s", c.collision_window);
+  doc.number("forecast_step_s", c.forecast_step);
+  doc.integer("forecast_count", c.forecast_count);
+  doc.number("history_window_s", c.history_window);
+  doc.key("resolution");
+  doc.begin_flow_map();
+  doc.integer("accelerations", c.resolution.accelerations);
+  doc.integer("curvatures", c.resolution.curvatures);
+  doc.end_map();
+  doc.number("max_time_step_s", c.max_time_step);
+  doc.key("effort_weights");
+  doc.begin_flow_map();
+  doc.number("longitudinal", c.effort.longitudinal);
+  doc.number("lateral", c.effort.lateral);
+  doc.end_map();
+  doc.key("assignment_search");
+  doc.word(c.assignment_search == mm::assignment_search_kind::exhaustive ? "exhaustive" : "coordinate_ascent");
+  doc.integer("max_exhaustive_assignments", c.max_exhaustive_assignments);
+  doc.boolean("map_column", c.map_column);
+  doc.end_map();
+}
+
+void write_planning_vehicle(document& doc, const mm::sim::planning_vehicle& v) {
+  doc.begin_map();
+  write_common(doc, v.name, "planning_vehicle", v.path, v.start_arc_length, v.start_time, v.before_start);
+  doc.number("start_lateral_offset_m", v.start_lateral_offset);
+  doc.number("initial_speed_mps", v.initial_speed);
+  doc.number("desired_speed_mps", v.desired_speed);
+  if (v.desired_speed_profile) {
+    doc.key("desired_speed_profile");
+    write_knots(doc, *v.desired_speed_profile);
+  }
+  write_footprint(doc, v.shape);
+  doc.key("limits");
+  doc.begin_map();
+  doc.number("max_acceleration_mps2", v.limits.max_acceleration);
+  doc.number("max_deceleration_mps2", v.limits.max_deceleration);
+  doc.number("max_lateral_acceleration_mps2", v.limits.max_lateral_acceleration);
+  doc.number("min_turning_radius_m", v.limits.min_turning_radius);
+  doc.number("speed_cap_mps", v.limits.speed_cap);
+  doc.boolean("steering", v.limits.steering);
+  doc.end_map();
+  write_planner(doc, v.planner);
+  doc.key("follower");
+  doc.begin_map();
+  doc.number("lookahead_time_s", v.follower.lookahead_time);
+  doc.number("min_lookahead_m", v.follower.min_lookahead);
+  doc.number("speed_gain_per_s", v.follower.speed_gain);
+  doc.number("comfortable_deceleration_mps2", v.follower.comfortable_deceleration);
+  if (v.follower.curve_lateral_acceleration) {
+    doc.number("curve_lateral_acceleration_mps2", *v.follower.curve_lateral_acceleration);
+  }
+  if (v.follower.car_following) {
+    doc.key("car_following");
+    doc.begin_map();
+    write_car_following(doc, *v.follower.car_following);
+    doc.end_map();
+  }
+  doc.end_map();
+  doc.boolean("avoidance", v.avoidance);
+  doc.integer("planning_period_steps", v.planning_period);
+  doc.end_map();
+}
+
+void write_motion(document& doc, const mm::sim::scripted_motion& m) {
+  if (m.speed.knots.size() == 1 && m.speed.knots.front().time == 0.0) {
+    doc.number("speed_mps", m.speed.knots.front().speed);
+  } else {
+    doc.key("speed_profile");
+    write_knots(doc, m.speed);
+  }
+  if (m.stop) {
+    doc.key("stop");
+    doc.begin_flow_map();
+    doc.number("arc_length_m", m.stop->arc_length);
+    if (m.stop->duration) doc.number("duration_s", *m.stop->duration);
+    doc.end_map();
+  }
+}
+
+void write_scripted_vehicle(document& doc, const mm::sim::scripted_vehicle& v) {
+  doc.begin_map();
+  write_common(doc, v.name, "scripted_vehicle", v.motion.path, v.motion.start_arc_length, v.motion.start_time,
+               v.motion.before_start);
+  write_motion(doc, v.motion);
+  write_footprint(doc, v.shape);
+  if (v.car_following) {
+    const mm::sim::scripted_car_following& k = *v.car_following;
+    doc.key("car_following");
+    doc.begin_map();
+    write_car_following(doc, k.following);
+    doc.number("max_acceleration_mps2", k.max_acceleration);
+    doc.number("comfortable_deceleration_mps2", k.comfortable_deceleration);
+    doc.number("max_deceleration_mps2", k.max_deceleration);
+    doc.number("speed_gain_per_s", k.speed_gain);
+    doc.boolean("follows_scripted", k.follows_scripted);
+    doc.end_map();
+  }
+  doc.end_map();
+}
+
+void write_pedestrian(document& doc, const mm::sim::pedestrian& p) {
+  doc.begin_map();
+  write_common(doc, p.name, "pedestrian", p.motion.path, p.motion.start_arc_length, p.motion.start_time,
+               p.motion.before_start);
+  write_motion(doc, p.motion);
+  doc.number("radius_m", p.radius);
+  doc.end_map();
+}
+
+void write_static_obstacle(document& doc, const mm::sim::static_obstacle& o) {
+  doc.begin_map();
+  doc.key("name");
+  doc.text(o.name);
+  doc.key("kind");
+  doc.word("static_obstacle");
+  doc.key("vertices_m");
+  doc.points(o.vertices);
+  doc.end_map();
+}
+
+/// The roundabout and roads of a loaded file: drawn, not used by the run.
+void write_drawn(document& doc, const loaded_scenario& drawn) {
+  if (drawn.roundabout) {
+    const roundabout_geometry& g = *drawn.roundabout;
+    doc.key("roundabout");
+    doc.begin_map();
+    doc.key("center_m");
+    doc.point(g.ring.center);
+    doc.number("radius_m", g.ring.radius);
+    doc.number("connection_radius_m", g.ring.connection_radius);
+    doc.key("arms");
+    doc.begin_map();
+    for (const named_arm& arm : g.arms) {
+      doc.key(arm.name);
+      doc.begin_flow_map();
+      doc.number("angle_rad", arm.arm.angle);
+      doc.number("lane_offset_m", arm.arm.lane_offset);
+      doc.number("straight_length_m", arm.arm.straight_length);
+      doc.end_map();
+    }
+    doc.end_map();
+    doc.end_map();
+  }
+  if (!drawn.roads.empty()) {
+    doc.key("roads");
+    doc.begin_list();
+    for (const road& r : drawn.roads) {
+      doc.begin_flow_map();
+      doc.key("name");
+      doc.text(r.name);
+      doc.key("centre_line_m");
+      doc.points(r.centre_line);
+      doc.number("width_m", r.width);
+      doc.end_map();
+    }
+    doc.end_list();
+  }
+}
+
+std::string text_of(const mm::sim::scenario& s, const loaded_scenario* drawn) {
+  if (auto error = mm::sim::validation_error(s)) throw std::invalid_argument("scenario_text: " + *error);
+  for (const mm::sim::planning_vehicle& v : s.planning_vehicles) {
+    if (v.planner.record_samples) {
+      throw std::invalid_argument("scenario_text: planning vehicle \"" + v.name +
+                                  "\": planner.record_samples = true: expected false (a scenario file cannot state it; "
+                                  "the drawing tools record the samples they draw)");
+    }
+  }
+  document doc;
+  doc.comment("\"" + s.name + "\" as the simulator runs it: every field given, SI units, start times resolved");
+  doc.begin_map();
+  doc.key("format");
+  doc.word(format_version);
+  doc.key("name");
+  doc.text(s.name);
+  doc.key("description");
+  doc.text(s.description);
+  doc.number("duration_s", s.duration);
+  doc.number("time_step_s", s.time_step);
+  doc.integer("seed", s.seed);
+  doc.key("sensing_noise");
+  doc.begin_flow_map();
+  doc.number("position_sd_m", s.noise.position_sd);
+  doc.number("heading_sd_rad", s.noise.heading_sd);
+  doc.number("speed_sd_mps", s.noise.speed_sd);
+  doc.end_map();
+  if (!s.drivable_area.empty()) {
+    doc.key("drivable_area");
+    doc.begin_map();
+    doc.key("polygons_m");
+    doc.begin_list();
+    for (const std::vector<vec2>& polygon : s.drivable_area.polygons) doc.points(polygon);
+    doc.end_list();
+    if (!s.drivable_area.open_edges.empty()) {
+      doc.key("open_edges");
+      doc.begin_flow_list();
+      for (const mm::polygon_edge& e : s.drivable_area.open_edges) {
+        doc.begin_flow_list();
+        doc.integer(e.polygon);
+        doc.integer(e.edge);
+        doc.end_list();
+      }
+      doc.end_list();
+    }
+    doc.end_map();
+  }
+  if (drawn) write_drawn(doc, *drawn);
+  doc.key("agents");
+  doc.begin_list();
+  for (const mm::sim::planning_vehicle& v : s.planning_vehicles) write_planning_vehicle(doc, v);
+  for (const mm::sim::scripted_vehicle& v : s.scripted_vehicles) write_scripted_vehicle(doc, v);
+  for (const mm::sim::pedestrian& p : s.pedestrians) write_pedestrian(doc, p);
+  for (const mm::sim::static_obstacle& o : s.static_obstacles) write_static_obstacle(doc, o);
+  doc.end_list();
+  doc.end_map();
+  std::string text = doc.text();
+  // The file must load as `s`: the loader also holds every road user to its sizes and speeds
+  // (docs/scenario-format.md), which a scenario built in code may not meet.
+  loaded_scenario loaded;
+  try {
+    loaded = load_text(text, "scenario \"" + s.name + "\" as written");
+  } catch (const scenario_error& e) {
+    throw std::invalid_argument("scenario_text: the scenario \"" + s.name + "\" is not one a scenario file can state: " +
+                                e.field() + (e.problem().rfind("= ", 0) == 0 ? " " : ": ") + e.problem());
+  }
+  if (!(loaded.scenario == s)) throw std::logic_error("scenario_text: the written scenario does not read back bit for bit");
+  return text;
+}
+
+}  // namespace
+
+std::string scenario_text(const mm::sim::scenario& s) { return text_of(s, nullptr); }
+
+std::string scenario_text(const loaded_scenario& loaded) { return text_of(loaded.scenario, &loaded); }
+
+namespace {
+
+void write_text(const std::string& text, const std::filesystem::path& file) {
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  if (!out) throw std::runtime_error(file.string() + ": cannot write the file: " + std::strerror(errno));
+  out << text;
+  out.close();
+  if (!out) throw std::runtime_error(file.string() + ": cannot write the file: " + std::strerror(errno));
+}
+
+}  // namespace
+
+void write_file(const mm::sim::scenario& s, const std::filesystem::path& file) { write_text(scenario_text(s), file); }
+
+void write_file(const loaded_scenario& loaded, const std::filesystem::path& file) {
+  write_text(scenario_text(loaded), file);
+}
+
+}  // namespace mm::scenario_file
