@@ -242,7 +242,8 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
       const mm::sim::plan_record& p = *now.last_plan(id);
       const mm::plan_result& r = p.result;
       const std::string& name = now.info(id).name;
-      for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+      // A vehicle whose planner computes no map column (`planner_config::map_column` false) has no rows.
+      for (std::size_t i = 0; i < r.mi_brake.size(); ++i) {
         fmt::memory_buffer& row = map.buffer();
         field(row, time);
         field(row, name);

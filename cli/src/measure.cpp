@@ -229,7 +229,7 @@ std::vector<std::string> write_measurement(const cr::scenario& s, const std::str
     const cr::measured_step& step = measurements[key.measurement].steps[key.step];
     const plan_result& r = step.result;
     const std::string prefix = fixed(step.time) + ',' + name_of(measurements[key.measurement].agent) + ',';
-    for (std::size_t i = 0; i < r.forecast_times.size(); ++i) {
+    for (std::size_t i = 0; i < r.mi_brake.size(); ++i) {  // none without a map column
       map += prefix;
       append_number(map, r.forecast_times[i], ',');
       append_number(map, r.mi_brake[i], ',');

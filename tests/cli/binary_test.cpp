@@ -24,11 +24,11 @@ result run(const std::string& args, const std::string& tag) {
 TEST(maneuvermap, help_lists_the_commands_and_exits_0) {
   const result r = run("--help", "help");
   EXPECT_EQ(r.code, 0);
-  for (const char* command : {"list", "validate", "run", "snapshot", "measure"}) EXPECT_TRUE(contains(r.out, command)) << r.out;
+  for (const char* command : {"list", "validate", "resolve", "run", "snapshot", "measure"}) EXPECT_TRUE(contains(r.out, command)) << r.out;
 }
 
 TEST(maneuvermap, every_command_has_help) {
-  for (const char* command : {"list", "validate", "run", "snapshot", "measure"}) {
+  for (const char* command : {"list", "validate", "resolve", "run", "snapshot", "measure"}) {
     const result r = run(std::string(command) + " --help", std::string("help_") + command);
     EXPECT_EQ(r.code, 0) << command;
     EXPECT_TRUE(contains(r.out, command)) << r.out;
@@ -187,6 +187,40 @@ TEST(maneuvermap, on_roads_plans_s2_on_its_lanes_as_the_example_file_does_and_re
   const result twice = run("validate " + example + " --on-roads", "on_roads_twice");
   EXPECT_EQ(twice.code, 2);
   EXPECT_TRUE(contains(twice.err, "--on-roads: the scenario gives its own drivable_area: (line 36)")) << twice.err;
+}
+
+TEST(maneuvermap, resolve_writes_a_file_that_runs_as_the_scenario_does) {
+  const temp_dir dir("resolve");
+  const std::string options = " --on-roads --set b_kmh=38 --policy robust --seed 4";
+  const result written = run("resolve s2-roundabout" + options + " --out " + (dir / "s2.yaml").string(), "resolve_file");
+  ASSERT_EQ(written.code, 0) << written.err;
+  const std::string text = read_file(dir / "s2.yaml");
+  EXPECT_TRUE(contains(text, "policy: robust")) << text;
+  EXPECT_TRUE(contains(text, "seed: 4")) << text;
+  EXPECT_FALSE(contains(text, "meet:")) << text;
+  const result printed = run("resolve s2-roundabout" + options, "resolve_print");
+  ASSERT_EQ(printed.code, 0) << printed.err;
+  EXPECT_EQ(printed.out, text);
+
+  ASSERT_EQ(run("run s2-roundabout" + options + " --out " + (dir / "original").string(), "resolve_original").code, 0);
+  const result again = run("run " + (dir / "s2.yaml").string() + " --out " + (dir / "resolved").string(), "resolve_run");
+  ASSERT_EQ(again.code, 0) << again.err;
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "scene.json"}) {
+    const std::string a = read_file(dir / "original" / name);
+    EXPECT_FALSE(a.empty()) << name;
+    EXPECT_EQ(a, read_file(dir / "resolved" / name)) << name;
+  }
+  // The file resolves to itself.
+  const result twice = run("resolve " + (dir / "s2.yaml").string(), "resolve_twice");
+  ASSERT_EQ(twice.code, 0) << twice.err;
+  EXPECT_EQ(twice.out, text);
+
+  const result unwritable = run("resolve s1-crossing --out /dev/null/s1.yaml", "resolve_unwritable");
+  EXPECT_EQ(unwritable.code, 2);
+  EXPECT_TRUE(contains(unwritable.err, "maneuvermap: /dev/null/s1.yaml: cannot write the file")) << unwritable.err;
+  const result bad = run("resolve s1-crossing --set b_kmh=-5", "resolve_bad");
+  EXPECT_EQ(bad.code, 2);
+  EXPECT_TRUE(bad.out.empty()) << bad.out;
 }
 
 }  // namespace

@@ -54,6 +54,23 @@ TEST(maneuvermap_replay, drives_the_recorded_ego_with_the_planner_and_writes_the
   }
 }
 
+TEST(maneuvermap_replay, writes_the_replay_as_a_scenario_file_that_runs_as_the_replay_does) {
+  const temp_dir dir("replay_scenario");
+  const std::string file = recording("OSC_PedestrianCollision-1_1_T-1");
+  const std::string scenario = (dir / "replay.yaml").string();
+  const result r = replay(file + " --reactive --on-lanelets --out " + (dir / "replay").string() + " --write-scenario " + scenario, dir);
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(read_file(scenario), "desired_speed_profile:")) << "its recorded speeds";
+  EXPECT_TRUE(contains(read_file(scenario), "open_edges:")) << "the lanelets' open ends";
+  const result run = mm::cli::testing::run_command(MANEUVERMAP_EXE, "run " + scenario + " --out " + (dir / "run").string(), dir);
+  ASSERT_EQ(run.code, 0) << run.err;
+  for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "scene.json"}) {
+    const std::string a = read_file(dir / "replay" / name);
+    EXPECT_FALSE(a.empty()) << name;
+    EXPECT_EQ(a, read_file(dir / "run" / name)) << name;
+  }
+}
+
 TEST(maneuvermap_replay, without_avoidance_the_car_keeps_its_speed_and_path_and_no_map_is_computed) {
   const temp_dir dir("replay_baseline");
   const result r = replay(recording("OSC_PedestrianCollision-1_1_T-1") + " --no-avoidance --desired-speed 30 --out " +

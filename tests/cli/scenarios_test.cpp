@@ -314,6 +314,23 @@ TEST(example_scenarios, in_the_roundabout_s_lanes_a_brakes_longer_and_its_footpr
 
 // --- output files ------------------------------------------------------------------------------
 
+TEST(cli_outputs, a_vehicle_planning_without_a_map_column_has_its_decisions_and_no_map_rows) {
+  sf::loaded_scenario loaded = sf::load("s5-several-obstacles");
+  loaded.scenario.planning_vehicles.front().planner.map_column = false;
+  const temp_dir dir("no_map_column");
+  run_settings settings;
+  settings.out_dir = dir.path();
+  run_scenario(loaded, settings);
+  const temp_dir full("with_map_column");
+  settings.out_dir = full.path();
+  run_scenario(sf::load("s5-several-obstacles"), settings);
+  EXPECT_EQ(read_file(dir / "map.csv"), "t,agent,tau,mi_brake,mi_accel,excluded\n");
+  EXPECT_FALSE(csv_rows(full / "map.csv").empty());
+  // The decisions are the same, bit for bit (planner_config::map_column).
+  EXPECT_EQ(read_file(dir / "decisions.csv"), read_file(full / "decisions.csv"));
+  EXPECT_EQ(read_file(dir / "trajectories.csv"), read_file(full / "trajectories.csv"));
+}
+
 TEST(cli_outputs, the_same_scenario_parameters_and_seed_give_byte_identical_files) {
   const sf::loaded_scenario loaded = sf::load("s3-left-turn");  // noisy sensing, so the seed matters
   const temp_dir first("determinism_1");

@@ -410,3 +410,54 @@ def test_a_simulations_states_and_last_plan_pickle_with_every_attribute():
     for value in (sim.info(0), sim.state(0), last):
         assert_same_attributes(value, pickle.loads(pickle.dumps(value)), type(value).__name__)
     assert sim.state(0).speed > 0.0 and last.time > 0.0
+
+
+def run_scenario_in_worker(scenario):
+    """A worker process of a study that sends scenarios, not names: its run's positions."""
+    return mm.sim.run(scenario).x.tobytes()
+
+
+def test_a_scenario_built_in_python_is_written_as_a_file_that_loads_and_runs_as_it(cli, tmp_path):
+    built = s1_crossing_built_in_python()
+    built.pedestrians.append(mm.sim.pedestrian(
+        name="P", radius=0.3,
+        motion=mm.sim.scripted_motion(
+            path=mm.sim.path(mm.pose((20.0, -8.0), math.pi / 2)).curve(6.0, 0.05).line_to((21.0, 2.0)),
+            speed=mm.sim.speed_profile(knots=[mm.sim.speed_knot(0.0, 1.2), mm.sim.speed_knot(2.0, 0.4)]),
+            stop=mm.sim.stop_rule(arc_length=7.0))))
+    built.planning_vehicles[0].planner.map_column = False
+    text = mm.sim.scenario_text(built)
+    assert text.startswith('# "s1-crossing" as the simulator runs it')
+    assert "curve: {length_m: 6, curvature_per_m: 0.05}" in text and "map_column: false" in text
+    assert mm.sim.load_text(text).scenario == built
+    file = tmp_path / "built.yaml"
+    mm.sim.write_scenario(built, file)
+    assert file.read_text() == text and mm.sim.load(str(file)).scenario == built
+    # The command line runs the file as Python runs the scenario.
+    subprocess.run([cli, "run", str(file), "--out", str(tmp_path / "cli")], check=True, capture_output=True)
+    mm.sim.write_run(built, tmp_path / "python")
+    for name in ("trajectories.csv", "map.csv", "decisions.csv", "scene.json"):
+        assert (tmp_path / "cli" / name).read_bytes() == (tmp_path / "python" / name).read_bytes(), name
+    # A scenario pickles as its file, so a process pool can take scenarios built in Python.
+    assert pickle.loads(pickle.dumps(built)) == built
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        assert pool.submit(run_scenario_in_worker, built).result() == mm.sim.run(built).x.tobytes()
+    # A loaded scenario keeps the roundabout and roads it draws.
+    loaded = mm.sim.load("s2-roundabout", on_roads=True)
+    again = mm.sim.load_text(mm.sim.scenario_text(loaded))
+    assert again.scenario == loaded.scenario and again.roundabout is not None and again.parameters == []
+
+
+def test_a_scenario_no_file_can_state_is_refused_and_agent_lists_compare_and_search_by_value():
+    built = s1_crossing_built_in_python()
+    built.scripted_vehicles[0].shape = mm.rectangle(4.5, 0.01)  # the simulator takes it, a file does not
+    with pytest.raises(ValueError, match="footprint.width_m = 0.01: expected a size of at least 0.05"):
+        mm.sim.scenario_text(built)
+    with pytest.raises(ValueError, match="footprint.width_m = 0.01"):
+        pickle.dumps(built)
+    built = s1_crossing_built_in_python()
+    b = copy.deepcopy(built.scripted_vehicles[0])
+    assert b in built.scripted_vehicles and built.scripted_vehicles.count(b) == 1
+    built.scripted_vehicles.remove(b)
+    assert len(built.scripted_vehicles) == 0 and built != s1_crossing_built_in_python()
+    assert built.scripted_vehicles == [] and built.scripted_vehicles != 3

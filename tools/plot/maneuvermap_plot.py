@@ -292,8 +292,12 @@ def plot_map(run, agent, out_dir, name, written):
     """Figure 1: the Maneuverability Map of one planning vehicle (paper Fig. 8)."""
     rows = [r for r in run.map_rows() if r["agent"] == agent]
     decisions = [d for d in run.decisions() if d["agent"] == agent]
-    if not rows or not decisions:
+    if not decisions:
         print(f"maneuvermap_plot: {run.dir}: {agent} never planned; no map", file=sys.stderr)
+        return
+    if not rows:
+        print(f"maneuvermap_plot: {run.dir}: {agent} planned without a map column (planner map_column: false); "
+              "no map", file=sys.stderr)
         return
     times = np.array(sorted({field_number(r, "t") for r in rows}))
     taus = np.array(sorted({field_number(r, "tau") for r in rows}))
