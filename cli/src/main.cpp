@@ -171,7 +171,7 @@ int validate_command(const scenario_options& o) {
 }
 
 /// `scenario_text(s)` to `file`, or to standard output for "" or "-"; input_error when no file
-/// can state `s` or the file cannot be written.
+/// can state `s` (exit 2), runtime_error when the file cannot be written (exit 1).
 void write_scenario(const sf::loaded_scenario& s, const std::string& file) {
   std::string text;
   try {
@@ -186,7 +186,7 @@ void write_scenario(const sf::loaded_scenario& s, const std::string& file) {
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   out << text;
   out.close();
-  if (!out) throw mm::cli::input_error(file + ": cannot write the file: " + std::strerror(errno));
+  if (!out) throw std::runtime_error(file + ": cannot write the file: " + std::strerror(errno));
 }
 
 int resolve_command(const scenario_options& o, const std::string& out) {

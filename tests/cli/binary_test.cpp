@@ -216,8 +216,8 @@ TEST(maneuvermap, resolve_writes_a_file_that_runs_as_the_scenario_does) {
   EXPECT_EQ(twice.out, text);
 
   const result unwritable = run("resolve s1-crossing --out /dev/null/s1.yaml", "resolve_unwritable");
-  EXPECT_EQ(unwritable.code, 2);
-  EXPECT_TRUE(contains(unwritable.err, "maneuvermap: /dev/null/s1.yaml: cannot write the file")) << unwritable.err;
+  EXPECT_EQ(unwritable.code, 1);
+  EXPECT_TRUE(contains(unwritable.err, "maneuvermap: error: /dev/null/s1.yaml: cannot write the file")) << unwritable.err;
   const result bad = run("resolve s1-crossing --set b_kmh=-5", "resolve_bad");
   EXPECT_EQ(bad.code, 2);
   EXPECT_TRUE(bad.out.empty()) << bad.out;
