@@ -1,13 +1,16 @@
 // libFuzzer target for the scenario loader: any input must either load or be rejected with a
 // scenario_error (located, with a message). A scenario that loads must also make a simulation and
 // step (the loader's checks are the simulator's: a scenario it accepts that the simulator refuses
-// is a bug); small ones are stepped a few times, planning included. Any other exception, a crash,
-// a leak or a hang is a bug. Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
+// is a bug); small ones are stepped a few times, planning included. Every scenario that loads is
+// written back (`scenario_text`, which loads its own text and throws std::logic_error unless it reads
+// back bit for bit): a scenario that loads but cannot be written is a bug. Any other exception, a
+// crash, a leak or a hang is a bug. Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
 
 #include "mm/scenario_file/loader.hpp"
+#include "mm/scenario_file/writer.hpp"
 #include "mm/sim/simulation.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -15,6 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const mm::scenario_file::loaded_scenario loaded = mm::scenario_file::load_text(text, "fuzz.yaml");
     const mm::sim::scenario& sc = loaded.scenario;
+    (void)mm::scenario_file::scenario_text(loaded);
     const std::size_t agents =
         sc.planning_vehicles.size() + sc.scripted_vehicles.size() + sc.pedestrians.size() + sc.static_obstacles.size();
     if (agents > 12) return 0;  // the fuzzer's time goes to inputs, not to planning crowds
