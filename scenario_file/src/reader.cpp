@@ -189,8 +189,37 @@ bool read_bool(const context& ctx, const field& f) {
   fail_value(ctx, f, "true or false (or a parameter that is 1 or 0)");
 }
 
+bool is_utf8(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned char c = byte(i);
+    std::size_t length = 0;
+    unsigned char low = 0x80;
+    unsigned char high = 0xBF;
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    if (c >= 0xC2 && c <= 0xDF) length = 2;
+    else if (c >= 0xE0 && c <= 0xEF) length = 3, low = c == 0xE0 ? 0xA0 : 0x80, high = c == 0xED ? 0x9F : 0xBF;
+    else if (c >= 0xF0 && c <= 0xF4) length = 4, low = c == 0xF0 ? 0x90 : 0x80, high = c == 0xF4 ? 0x8F : 0xBF;
+    else return false;
+    if (i + length > text.size()) return false;
+    if (byte(i + 1) < low || byte(i + 1) > high) return false;
+    for (std::size_t k = 2; k < length; ++k) {
+      if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return false;
+    }
+    i += length;
+  }
+  return true;
+}
+
 std::string read_string(const context& ctx, const field& f) {
   if (!f.node.IsScalar()) fail_value(ctx, f, "a text");
+  if (!is_utf8(f.node.Scalar())) {
+    ctx.fail(f.node, f.path, "a text that is not UTF-8: expected UTF-8 text (a YAML file is Unicode)");
+  }
   return f.node.Scalar();
 }
 

@@ -138,6 +138,9 @@ class map_view {
   YAML::Node anchor_;  ///< where "missing" errors point: the first layer, or the parent of an absent map
 };
 
+/// True when `text` is well-formed UTF-8 (no overlong forms, surrogates or code points above U+10FFFF).
+bool is_utf8(std::string_view text);
+
 /// The shortest decimal text that reads back as `value` ("0.5", "40").
 std::string number_text(double value);
 

@@ -40,7 +40,13 @@ class document {
   void number(double value) { out_ << number_text(value); }
   void integer(std::uint64_t value) { out_ << std::to_string(value); }
   void boolean(bool value) { out_ << (value ? "true" : "false"); }
-  void text(const std::string& value) { out_ << YAML::DoubleQuoted << value; }
+  /// A text, which must be UTF-8 (YAML is Unicode; the emitter would replace other bytes).
+  void text(const std::string& value, std::string_view field) {
+    if (!detail::is_utf8(value)) {
+      throw std::invalid_argument("scenario_text: " + std::string(field) + ": a text that is not UTF-8: expected UTF-8 text");
+    }
+    out_ << YAML::DoubleQuoted << value;
+  }
   void word(std::string_view value) { out_ << std::string(value); }
   void point(vec2 p) {
     begin_flow_list();
@@ -144,7 +150,7 @@ void write_knots(document& doc, const mm::sim::speed_profile& profile) {
 void write_common(document& doc, const std::string& name, std::string_view kind, const path& p, double start_arc_length,
                   double start_time, mm::sim::before_start_behaviour before_start) {
   doc.key("name");
-  doc.text(name);
+  doc.text(name, std::string(kind) + " name");
   doc.key("kind");
   doc.word(kind);
   doc.key("path");
@@ -284,7 +290,7 @@ void write_pedestrian(document& doc, const mm::sim::pedestrian& p) {
 void write_static_obstacle(document& doc, const mm::sim::static_obstacle& o) {
   doc.begin_map();
   doc.key("name");
-  doc.text(o.name);
+  doc.text(o.name, "static_obstacle name");
   doc.key("kind");
   doc.word("static_obstacle");
   doc.key("vertices_m");
@@ -305,6 +311,7 @@ void write_drawn(document& doc, const loaded_scenario& drawn) {
     doc.key("arms");
     doc.begin_map();
     for (const named_arm& arm : g.arms) {
+      if (!detail::is_utf8(arm.name)) throw std::invalid_argument("scenario_text: roundabout arm name: a text that is not UTF-8");
       doc.key(arm.name);
       doc.begin_flow_map();
       doc.number("angle_rad", arm.arm.angle);
@@ -321,7 +328,7 @@ void write_drawn(document& doc, const loaded_scenario& drawn) {
     for (const road& r : drawn.roads) {
       doc.begin_flow_map();
       doc.key("name");
-      doc.text(r.name);
+      doc.text(r.name, "road name");
       doc.key("centre_line_m");
       doc.points(r.centre_line);
       doc.number("width_m", r.width);
@@ -329,6 +336,26 @@ void write_drawn(document& doc, const loaded_scenario& drawn) {
     }
     doc.end_list();
   }
+}
+
+/// Where `read` first differs from `s`, for the message of a write that does not read back.
+std::string first_difference(const mm::sim::scenario& s, const mm::sim::scenario& read) {
+  const auto agents = [](std::string_view list, const auto& a, const auto& b) -> std::string {
+    if (a.size() != b.size()) return std::string(list) + ": " + std::to_string(a.size()) + " agents read back as " + std::to_string(b.size());
+    for (std::size_t i = 0; i < a.size(); ++i) {
+      if (!(a[i] == b[i])) return std::string(list) + "[" + std::to_string(i) + "] \"" + a[i].name + "\"";
+    }
+    return "";
+  };
+  for (const std::string& where :
+       {agents("planning_vehicles", s.planning_vehicles, read.planning_vehicles),
+        agents("scripted_vehicles", s.scripted_vehicles, read.scripted_vehicles),
+        agents("pedestrians", s.pedestrians, read.pedestrians),
+        agents("static_obstacles", s.static_obstacles, read.static_obstacles)}) {
+    if (!where.empty()) return where;
+  }
+  if (!(s.drivable_area == read.drivable_area)) return "drivable_area";
+  return "the scenario's own fields";
 }
 
 std::string text_of(const mm::sim::scenario& s, const loaded_scenario* drawn) {
@@ -341,14 +368,14 @@ std::string text_of(const mm::sim::scenario& s, const loaded_scenario* drawn) {
     }
   }
   document doc;
-  doc.comment("\"" + s.name + "\" as the simulator runs it: every field given, SI units, start times resolved");
+  doc.comment("A scenario as the simulator runs it: every field given, SI units, start times resolved");
   doc.begin_map();
   doc.key("format");
   doc.word(format_version);
   doc.key("name");
-  doc.text(s.name);
+  doc.text(s.name, "name");
   doc.key("description");
-  doc.text(s.description);
+  doc.text(s.description, "description");
   doc.number("duration_s", s.duration);
   doc.number("time_step_s", s.time_step);
   doc.integer("seed", s.seed);
@@ -397,7 +424,10 @@ std::string text_of(const mm::sim::scenario& s, const loaded_scenario* drawn) {
     throw std::invalid_argument("scenario_text: the scenario \"" + s.name + "\" is not one a scenario file can state: " +
                                 e.field() + (e.problem().rfind("= ", 0) == 0 ? " " : ": ") + e.problem());
   }
-  if (!(loaded.scenario == s)) throw std::logic_error("scenario_text: the written scenario does not read back bit for bit");
+  if (!(loaded.scenario == s)) {
+    throw std::logic_error("scenario_text: the written scenario does not read back bit for bit: " +
+                           first_difference(s, loaded.scenario) + "\n" + text);
+  }
   return text;
 }
 

@@ -427,7 +427,7 @@ def test_a_scenario_built_in_python_is_written_as_a_file_that_loads_and_runs_as_
             stop=mm.sim.stop_rule(arc_length=7.0))))
     built.planning_vehicles[0].planner.map_column = False
     text = mm.sim.scenario_text(built)
-    assert text.startswith('# "s1-crossing" as the simulator runs it')
+    assert text.startswith("# A scenario as the simulator runs it") and 'name: "s1-crossing"' in text
     assert "curve: {length_m: 6, curvature_per_m: 0.05}" in text and "map_column: false" in text
     assert mm.sim.load_text(text).scenario == built
     file = tmp_path / "built.yaml"

@@ -257,6 +257,27 @@ TEST(scenario_file_errors_misc, a_missing_file_a_directory_and_an_unknown_built_
   }
 }
 
+TEST(scenario_file_errors_misc, text_that_is_not_utf8_is_refused_where_it_stands) {
+  std::string text = base;
+  const std::size_t at = text.find("name: ") + 6;
+  text.insert(at, "\xff\xfe");
+  try {
+    load_text(text, "case.yaml");
+    FAIL() << "a name that is not UTF-8 loaded";
+  } catch (const scenario_error& e) {
+    EXPECT_EQ(e.field(), "name");
+    EXPECT_NE(std::string(e.what()).find("expected UTF-8 text"), std::string::npos) << e.what();
+  }
+  text = base;
+  text.insert(at, "caf\xc3\xa9 \xe2\x86\x92 \xf0\x9f\x9a\x97 ");  // é → and a car: UTF-8
+  EXPECT_NO_THROW(load_text(text, "case.yaml"));
+  for (const char* bad : {"\xc0\xaf", "\xed\xa0\x80", "\xf4\x90\x80\x80", "\xe2\x86"}) {  // overlong, surrogate, > U+10FFFF, cut
+    text = base;
+    text.insert(at, bad);
+    EXPECT_THROW(load_text(text, "case.yaml"), scenario_error) << bad;
+  }
+}
+
 TEST(scenario_file_errors_misc, yaml_nested_too_deep_is_reported_as_such) {
   const std::string deep = "format: maneuvermap-scenario/1\nname: x\nagents: " + std::string(5000, '[') + "\n";
   try {

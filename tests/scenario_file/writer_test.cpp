@@ -103,6 +103,15 @@ TEST(scenario_file_writer, a_scenario_that_no_file_can_state_is_refused_with_the
   }
 
   s = load("s1-crossing").scenario;
+  s.description = "not UTF-8: \xff";
+  try {
+    (void)scenario_text(s);
+    ADD_FAILURE() << "a description a YAML file cannot hold was written";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("description: a text that is not UTF-8"), std::string::npos) << e.what();
+  }
+
+  s = load("s1-crossing").scenario;
   s.planning_vehicles.front().planner.record_samples = true;
   EXPECT_THROW((void)scenario_text(s), std::invalid_argument);
 }
@@ -238,7 +247,8 @@ class random_scenario {
   bool pick(double p) { return std::bernoulli_distribution(p)(rng_); }
 
   std::string name() {
-    static const std::vector<std::string> odd{"A", "car 7", "x: y", "#1", "'q'", "é → ü", "$p", "-", "true", "null", "[a]", "{b}", "  padded  ", "~"};
+    static const std::vector<std::string> odd{"A", "car 7", "x: y", "#1", "'q'", "é → ü", "$p", "-", "true", "null", "[a]", "{b}", "  padded  ", "~",
+                                              "two\nlines", "tab\there", "bell\x07", "\"quoted\"", "back\\slash"};
     return odd[static_cast<std::size_t>(count(0, static_cast<int>(odd.size()) - 1))] + "_" + std::to_string(next_name_++);
   }
 
