@@ -74,6 +74,15 @@ py::array_t<T> matrix_of(const std::vector<U>& values, std::size_t columns) {
   return out;
 }
 
+/// One index of a map over its steps: (steps × forecast times), or (steps × 0) when the planner
+/// computed no map column.
+py::array_t<double> index_matrix(const map_record& r, const std::vector<double>& values) {
+  if (values.empty()) {
+    return py::array_t<double>(std::vector<py::ssize_t>{static_cast<py::ssize_t>(r.times.size()), 0});
+  }
+  return matrix_of(values, r.forecast_times.size());
+}
+
 void record_instant(const sim::simulation& now, run_record& record) {
   record.times.push_back(now.time());
   for (agent_id id = 0; id < now.agent_count(); ++id) {
@@ -408,12 +417,11 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("times", [](const map_record& r) { return array_of(r.times); }, "[s], shape (steps,)")
       .def_property_readonly("forecast_times", [](const map_record& r) { return array_of(r.forecast_times); },
                              "τ_i [s]")
-      .def_property_readonly("mi_brake",
-                             [](const map_record& r) { return matrix_of(r.mi_brake, r.forecast_times.size()); },
-                             "MI−, shape (steps, forecast times); no columns without map_columns")
-      .def_property_readonly("mi_accelerate",
-                             [](const map_record& r) { return matrix_of(r.mi_accelerate, r.forecast_times.size()); },
-                             "MI+, shape (steps, forecast times)")
+      .def_property_readonly("mi_brake", [](const map_record& r) { return index_matrix(r, r.mi_brake); },
+                             "MI−, shape (steps, forecast times); (steps, 0) without map columns (the run's "
+                             "map_columns or the planner's map_column false)")
+      .def_property_readonly("mi_accelerate", [](const map_record& r) { return index_matrix(r, r.mi_accelerate); },
+                             "MI+, shape (steps, forecast times); (steps, 0) without map columns")
       .def_property_readonly("excluded", [](const map_record& r) {
         return matrix_of<bool>(r.excluded, r.forecast_times.size());
       }, "τ_i > TTC, shape (steps, forecast times)")

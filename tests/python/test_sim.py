@@ -171,7 +171,8 @@ def test_a_run_without_map_columns_makes_the_same_decisions_and_keeps_no_indices
     a, b = with_maps.maps[0], without.maps[0]
     assert b.forecast_time.tobytes() == a.forecast_time.tobytes()
     assert b.mode.tobytes() == a.mode.tobytes()
-    assert b.mi_brake.size == 0 and b.mi_accelerate.size == 0
+    assert b.mi_brake.shape == b.mi_accelerate.shape == (len(b.times), 0)
+    assert b.excluded.shape == a.excluded.shape
 
 
 def s1_crossing_built_in_python():

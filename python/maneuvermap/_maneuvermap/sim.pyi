@@ -275,11 +275,11 @@ class map_record:
         ...
     @property
     def mi_brake(self) -> numpy.typing.NDArray[numpy.float64]:
-        """MI−, shape (steps, forecast times); no columns without map_columns"""
+        """MI−, shape (steps, forecast times); (steps, 0) without map columns (the run's map_columns or the planner's map_column false)"""
         ...
     @property
     def mi_accelerate(self) -> numpy.typing.NDArray[numpy.float64]:
-        """MI+, shape (steps, forecast times)"""
+        """MI+, shape (steps, forecast times); (steps, 0) without map columns"""
         ...
     @property
     def excluded(self) -> numpy.typing.NDArray[numpy.bool_]:
