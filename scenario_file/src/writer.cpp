@@ -112,9 +112,10 @@ void write_path(document& doc, const path& p) {
       doc.number("length_m", seg.length);
       doc.number("curvature_per_m", seg.curvature);
       doc.end_map();
-    } else if (path ahead = rebuilt; ahead.straight(seg.length).segments().back() == seg &&
-                                       ahead.end_pose().position == end.position) {
-      rebuilt = ahead;
+    } else if (const path alone = path(rebuilt.end_pose()).straight(seg.length);  // what straight_m would add
+               alone.segments().front().start == seg.start && seg.start_arc_length == rebuilt.length() &&
+               alone.end_pose().position == end.position) {
+      rebuilt.straight(seg.length);
       doc.number("straight_m", seg.length);
     } else {
       rebuilt.line_to(end.position);
