@@ -12,6 +12,10 @@ void bind_core(py::module_& m);
 /// The simulator and the scenario files (`mm::sim`, `mm::scenario_file`), into `m`.
 void bind_sim(py::module_& m);
 
+/// The parameter sweeps (`mm::cli::run_sweep`: `write_sweep`, `sweep_record`), into `m`; after `bind_sim`,
+/// whose run metrics they hold.
+void bind_sweeps(py::module_& m);
+
 /// The CommonRoad reader and measurement (`mm::commonroad`), into `m`.
 void bind_commonroad(py::module_& m);
 

@@ -7,6 +7,7 @@ PYBIND11_MODULE(_maneuvermap, m) {
   mm::python::bind_core(m);
   pybind11::module_ sim = m.def_submodule("sim", "The traffic microsimulator and its scenario files");
   mm::python::bind_sim(sim);
+  mm::python::bind_sweeps(sim);
   pybind11::module_ commonroad =
       m.def_submodule("commonroad", "Reading CommonRoad recordings and measuring their road users' room to maneuver");
   mm::python::bind_commonroad(commonroad);

@@ -26,9 +26,13 @@ class document {
     out_.SetMapFormat(YAML::Block);
   }
 
-  std::string text() const { return std::string(out_.c_str()) + "\n"; }
+  /// The document written so far.
+  std::string yaml() const {
+    if (!out_.good()) throw std::logic_error("scenario_text: the YAML emitter failed: " + out_.GetLastError());
+    return std::string(out_.c_str()) + "\n";
+  }
 
-  void comment(const std::string& text) { out_ << YAML::Comment(text); }
+  void comment(const std::string& line) { out_ << YAML::Comment(line); }
   void begin_map() { out_ << YAML::BeginMap; }
   void begin_flow_map() { out_ << YAML::Flow << YAML::BeginMap; }
   void end_map() { out_ << YAML::EndMap; }
@@ -415,7 +419,7 @@ std::string text_of(const mm::sim::scenario& s, const loaded_scenario* drawn) {
   for (const mm::sim::static_obstacle& o : s.static_obstacles) write_static_obstacle(doc, o);
   doc.end_list();
   doc.end_map();
-  std::string text = doc.text();
+  std::string text = doc.yaml();
   // The file must load as `s`: the loader also holds every road user to its sizes and speeds
   // (docs/scenario-format.md), which a scenario built in code may not meet.
   loaded_scenario loaded;

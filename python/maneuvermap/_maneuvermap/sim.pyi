@@ -144,6 +144,10 @@ def builtin_scenarios() -> List[str]:
     """The names of the built-in scenarios."""
     ...
 
+def builtin_sweeps() -> List[str]:
+    """The names of the built-in sweeps (`maneuvermap list`)."""
+    ...
+
 class bypass_side:
     """Members:
 
@@ -1194,6 +1198,59 @@ class stop_rule:
     duration: Optional[float]
     """how long it stands [s] > 0; None: for ever"""
 
+class sweep_record:
+    """The runs of a sweep in grid order (parameters, then policies, then repetitions), as runs.csv has them."""
+    def __getstate__(self) -> Tuple[Any, ...]: ...
+    def __setstate__(self, arg0: Tuple[Any, ...]) -> None: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def agent(self) -> str:
+        """the planning vehicle whose metrics are reported"""
+        ...
+    @property
+    def parameters(self) -> List[str]:
+        """the swept parameters, outermost first"""
+        ...
+    @property
+    def values(self) -> numpy.typing.NDArray[numpy.float64]:
+        """the parameters' values of each run, shape (runs, parameters)"""
+        ...
+    @property
+    def policy(self) -> List[str]:
+        """each run's forecast policy: adj, const:SECONDS or robust"""
+        ...
+    @property
+    def repetition(self) -> numpy.typing.NDArray[numpy.uint64]:
+        """each run's repetition, from 0"""
+        ...
+    @property
+    def seed(self) -> numpy.typing.NDArray[numpy.uint64]:
+        """each run's seed"""
+        ...
+    @property
+    def metrics(self) -> List[Optional[run_metrics]]:
+        """each run's metrics of the agent (spec §12); None when it failed"""
+        ...
+    @property
+    def error(self) -> List[str]:
+        """why each run failed; empty when it did not"""
+        ...
+    @property
+    def failed(self) -> int:
+        """how many runs failed"""
+        ...
+    @property
+    def table(self) -> str:
+        """table.md: per cell (parameters × policy), mean ± sd"""
+        ...
+    @property
+    def files(self) -> List[str]:
+        """the files written"""
+        ...
+    def __len__(self) -> int: ...
+    def __repr__(self) -> str: ...
+
 def write_run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], out_dir: Union[str, os.PathLike[str]], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., measure_cpu_time: bool = ...) -> List[str]:
     """Runs a scenario as `run` does and writes the files of `maneuvermap run --out out_dir` (trajectories.csv, map.csv, decisions.csv, summary.json, scene.json; docs/outputs.md), which `maneuvermap plot` draws; returns their paths. Releases the GIL."""
     ...
@@ -1205,4 +1262,8 @@ def write_scenario(scenario: scenario, file: Union[str, os.PathLike[str]]) -> No
 @overload
 def write_scenario(scenario: loaded_scenario, file: Union[str, os.PathLike[str]]) -> None:
     """Writes scenario_text(scenario) of a loaded scenario to `file`."""
+    ...
+
+def write_sweep(sweep: object, out_dir: Union[str, os.PathLike[str]], *, jobs: int = ..., repetitions: Optional[int] = ..., on_roads: bool = ..., keep_runs: bool = ...) -> sweep_record:
+    """Runs a built-in sweep (builtin_sweeps()) or a sweep file (docs/outputs.md, "Sweeps") as `maneuvermap sweep` does, on `jobs` threads (0: every core; the results do not depend on it), writes its files (runs.csv, table.csv, table.md, sweep.json; with keep_runs each run's own) to out_dir and returns its runs. `repetitions` replaces the file's; keep_runs=True keeps the runs of a file that does not. A failed run is recorded with its error. Releases the GIL."""
     ...
