@@ -3,7 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cerrno>
-#include <cstring>
+#include <system_error>
 #include <fstream>
 #include <stdexcept>
 #include <string_view>
@@ -445,11 +445,15 @@ std::string scenario_text(const loaded_scenario& loaded) { return text_of(loaded
 namespace {
 
 void write_text(const std::string& text, const std::filesystem::path& file) {
+  const auto fail = [&] {
+    throw std::filesystem::filesystem_error("cannot write the scenario file", file,
+                                            std::error_code(errno, std::generic_category()));
+  };
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  if (!out) throw std::runtime_error(file.string() + ": cannot write the file: " + std::strerror(errno));
+  if (!out) fail();
   out << text;
   out.close();
-  if (!out) throw std::runtime_error(file.string() + ": cannot write the file: " + std::strerror(errno));
+  if (!out) fail();
 }
 
 }  // namespace

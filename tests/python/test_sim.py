@@ -462,3 +462,17 @@ def test_a_scenario_no_file_can_state_is_refused_and_agent_lists_compare_and_sea
     built.scripted_vehicles.remove(b)
     assert len(built.scripted_vehicles) == 0 and built != s1_crossing_built_in_python()
     assert built.scripted_vehicles == [] and built.scripted_vehicles != 3
+
+
+def test_files_that_cannot_be_written_raise_os_errors_with_the_path(tmp_path):
+    (tmp_path / "a-file").write_text("")
+    blocked = tmp_path / "a-file" / "below"  # under a file: not a directory
+    with pytest.raises(NotADirectoryError) as scenario_error:
+        mm.sim.write_scenario(mm.sim.load("s1-crossing").scenario, blocked / "s1.yaml")
+    assert scenario_error.value.filename == str(blocked / "s1.yaml")
+    assert "cannot write the scenario file" in str(scenario_error.value)
+    with pytest.raises(OSError) as run_error:
+        mm.sim.write_run("s1-crossing", blocked)
+    assert str(blocked) in str(run_error.value)
+    with pytest.raises(OSError):
+        mm.sim.write_sweep("table1", blocked, repetitions=1)

@@ -126,8 +126,10 @@ TEST(scenario_file_writer, write_file_names_a_file_it_cannot_write) {
   try {
     write_file(s, dir / "missing" / "s3.yaml");
     ADD_FAILURE() << "wrote into a missing directory";
-  } catch (const std::runtime_error& e) {
-    EXPECT_NE(std::string(e.what()).find("missing/s3.yaml: cannot write the file"), std::string::npos) << e.what();
+  } catch (const std::filesystem::filesystem_error& e) {
+    EXPECT_EQ(e.path1(), dir / "missing" / "s3.yaml");
+    EXPECT_EQ(e.code(), std::errc::no_such_file_or_directory);
+    EXPECT_NE(std::string(e.what()).find("cannot write the scenario file"), std::string::npos) << e.what();
   }
   std::filesystem::remove_all(dir);
 }

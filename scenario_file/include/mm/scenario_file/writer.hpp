@@ -30,7 +30,8 @@ std::string scenario_text(const mm::sim::scenario& s);
 std::string scenario_text(const loaded_scenario& loaded);
 
 /// Writes `scenario_text(s)` to `file` (replacing it). Throws `std::invalid_argument` as
-/// `scenario_text` does, and `std::runtime_error` naming the file when it cannot be written.
+/// `scenario_text` does, and `std::filesystem::filesystem_error` (the file and the reason) when it
+/// cannot be written.
 void write_file(const mm::sim::scenario& s, const std::filesystem::path& file);
 
 /// Writes `scenario_text(loaded)` to `file`, as the other `write_file`.
