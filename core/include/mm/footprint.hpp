@@ -22,12 +22,16 @@ struct rectangle {
 /// Disc centred on the reference point (pedestrians; spec §2 default radius 0.35 m).
 struct disc {
   double radius = 0.35;
+
+  friend bool operator==(const disc&, const disc&) = default;
 };
 
 /// Convex polygon in the body frame (x forward, y left) [m], either orientation.
 /// At least 3 and at most `max_polygon_vertices` vertices.
 struct convex_polygon {
   std::vector<vec2> vertices;
+
+  friend bool operator==(const convex_polygon&, const convex_polygon&) = default;
 };
 
 /// The shape a road user occupies, relative to its reference point and heading.

@@ -21,6 +21,8 @@ struct state {
   double velocity = 0.0;               ///< speed along the orientation [m/s]; recordings give small negatives
   std::optional<double> yaw_rate;      ///< [rad/s], when the file gives it
   std::optional<double> acceleration;  ///< [m/s²], when the file gives it
+
+  friend bool operator==(const state&, const state&) = default;
 };
 
 enum class obstacle_role : std::uint8_t { dynamic_obstacle, static_obstacle };
@@ -36,6 +38,8 @@ struct obstacle {
   footprint shape;
   /// The initial state, then the trajectory's states, at consecutive steps (a static obstacle: one).
   std::vector<state> states;
+
+  friend bool operator==(const obstacle&, const obstacle&) = default;
 };
 
 /// A lane of the road network: its two bounds, in the driving direction (for drawing).
@@ -43,12 +47,16 @@ struct lanelet {
   std::uint32_t id = 0;
   std::vector<vec2> left_bound;   ///< [m]
   std::vector<vec2> right_bound;  ///< [m]
+
+  friend bool operator==(const lanelet&, const lanelet&) = default;
 };
 
 /// The start of an ego task of the file (its goal is not read).
 struct planning_problem {
   std::uint32_t id = 0;
   state initial;
+
+  friend bool operator==(const planning_problem&, const planning_problem&) = default;
 };
 
 /// What a CommonRoad scenario file holds, as far as measuring road users needs it.
@@ -59,6 +67,8 @@ struct scenario {
   std::vector<lanelet> lanelets;
   std::vector<obstacle> obstacles;  ///< in file order; ids unique among them
   std::vector<planning_problem> planning_problems;
+
+  friend bool operator==(const scenario&, const scenario&) = default;
 };
 
 /// The lanelets as polygons, each its left bound then its right bound backwards: their union is the
