@@ -10,10 +10,13 @@
 #include <memory>
 #include <numbers>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <ostream>
 #include <variant>
 
 #include "output_files.hpp"
+#include "mm/cli/commonroad_export.hpp"
+#include "mm/commonroad/writer.hpp"
 #include "mm/forecast.hpp"
 #include "mm/maneuver.hpp"
 #include "mm/sim/roundabout.hpp"
@@ -204,6 +207,8 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
   const mm::sim::scenario& s = loaded.scenario;
   // First the simulation, which refuses an invalid scenario: then nothing has been written.
   mm::sim::simulation sim(s, {settings.measure_cpu_time, settings.jobs});
+  std::optional<commonroad_recording> recording;
+  if (!settings.commonroad_file.empty()) recording.emplace(loaded, settings.commonroad_step);
   std::filesystem::create_directories(settings.out_dir);
   const auto file = [&](const char* name) { return settings.out_dir / name; };
   csv_file trajectories(file("trajectories.csv"), "t,agent,x,y,heading,speed,accel,curvature");
@@ -212,6 +217,7 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
 
   std::size_t shown_step = 0;
   mm::sim::run(sim, [&](const mm::sim::simulation& now) {
+    if (recording) recording->record(now);
     fmt::memory_buffer t;
     append_fixed(t, now.time());
     const std::string_view time(t.data(), t.size());
@@ -314,6 +320,10 @@ run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run
   write_text(file("scene.json"), scene_json(loaded).dump() + "\n");  // compact: mostly long point lists
   for (const char* name : {"trajectories.csv", "map.csv", "decisions.csv", "summary.json", "scene.json"}) {
     outcome.files.push_back(file(name).string());
+  }
+  if (recording) {
+    mm::commonroad::write_scenario(recording->scenario(), settings.commonroad_file);
+    outcome.files.push_back(settings.commonroad_file.string());
   }
   return outcome;
 }

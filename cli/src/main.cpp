@@ -197,9 +197,12 @@ int resolve_command(const scenario_options& o, const std::string& out) {
 /// `--plots`: the figures of `dir` into `dir` (failures are reported as by `maneuvermap plot`).
 void plot_into(const std::filesystem::path& dir) { mm::cli::draw_plots(dir, {}); }
 
-int run_command(const scenario_options& o, const std::string& out, bool timing, bool plots, std::size_t jobs) {
+int run_command(const scenario_options& o, const std::string& out, bool timing, bool plots, std::size_t jobs,
+                const std::string& commonroad, double commonroad_step) {
   const sf::loaded_scenario loaded = load(o);
   mm::cli::run_settings settings;
+  settings.commonroad_file = commonroad;
+  settings.commonroad_step = commonroad_step;
   settings.out_dir = out.empty() ? std::filesystem::path("out") / loaded.scenario.name : std::filesystem::path(out);
   settings.measure_cpu_time = timing;
   // 0: every core, as `sweep` does (the outputs do not depend on it).
@@ -455,6 +458,15 @@ int main(int argc, char** argv) {
       ->check(integer_in(1, 256))
       ->type_name("N");
   run->add_flag("--plots", run_plots, "Then draw the run's figures into its output directory (maneuvermap plot)");
+  std::string run_commonroad;
+  double run_commonroad_step = 0.1;
+  run->add_option("--commonroad", run_commonroad,
+                  "Also write the run as a CommonRoad recording (XML, 2020a), which maneuvermap measure reads")
+      ->type_name("FILE.xml");
+  run->add_option("--commonroad-step", run_commonroad_step,
+                  "The recording's time step, a whole multiple of the run's (default 0.1 s)")
+      ->check(number_in("s", 1e-6, 3600.0))
+      ->type_name("SECONDS");
 
   sweep_options sweep_opts;
   CLI::App* sweep = app.add_subcommand(
@@ -569,7 +581,9 @@ int main(int argc, char** argv) {
     if (list->parsed()) return list_command();
     if (validate->parsed()) return validate_command(validate_options);
     if (resolve->parsed()) return resolve_command(resolve_options, resolve_out);
-    if (run->parsed()) return run_command(run_options, run_out, timing, run_plots, run_jobs);
+    if (run->parsed()) {
+      return run_command(run_options, run_out, timing, run_plots, run_jobs, run_commonroad, run_commonroad_step);
+    }
     if (sweep->parsed()) return sweep_command(sweep_opts);
     if (plot->parsed()) return plot_command(plot_target, plot_out);
     if (snapshot->parsed()) return snapshot_command(snapshot_options, snapshot_time, snapshot_agent, snapshot_tau, snapshot_out);

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "bindings.hpp"
+#include "mm/commonroad/writer.hpp"
 #include "fields.hpp"
 #include "mm/commonroad/measure.hpp"
 #include "mm/commonroad/reader.hpp"
@@ -142,6 +143,11 @@ void bind_commonroad(py::module_& m) {
         "field and value of any problem.");
   m.def("read_scenario_text", &cr::read_scenario_text, py::arg("text"), py::arg("source") = "<text>",
         py::call_guard<py::gil_scoped_release>(), "As read_scenario, from the XML text itself.");
+  m.def("scenario_xml", &cr::scenario_xml, py::arg("scenario"),
+        "The CommonRoad XML (2020a) that read_scenario_text reads as `scenario` again, bit for bit (its version "
+        "aside); ValueError when it would not.");
+  m.def("write_scenario", &cr::write_scenario, py::arg("scenario"), py::arg("file"),
+        "Writes scenario_xml(scenario) to `file`.");
 
   py::class_<cr::measured_step> step_type(m, "measured_step",
                                           "The planner's view of the measured road user at one step.");

@@ -203,6 +203,8 @@ void bind_scenarios(py::module_& m) {
       instance.attr("field") = e.field();
       instance.attr("problem") = e.problem();
       PyErr_SetObject(error->ptr(), instance.ptr());
+    } catch (const cli::input_error& e) {  // a bad option of the command line's code path
+      PyErr_SetString(PyExc_ValueError, e.what());
     }
   });
 
@@ -511,10 +513,13 @@ void bind_simulation(py::module_& m) {
   m.def("write_run",
         [](const py::object& what, const std::filesystem::path& out_dir,
            const std::optional<std::map<std::string, double>>& set, const std::optional<forecast_policy>& policy,
-           const std::optional<std::uint64_t>& seed, bool on_roads, std::size_t jobs, bool measure_cpu_time) {
+           const std::optional<std::uint64_t>& seed, bool on_roads, std::size_t jobs, bool measure_cpu_time,
+           const std::optional<std::filesystem::path>& commonroad, double commonroad_step) {
           const loaded_scenario loaded = loaded_from("write_run", what, set, policy, seed, on_roads);
           cli::run_settings settings;
           settings.out_dir = out_dir;
+          if (commonroad) settings.commonroad_file = *commonroad;
+          settings.commonroad_step = commonroad_step;
           settings.jobs = run_options_of(jobs, true, measure_cpu_time).jobs;
           settings.measure_cpu_time = measure_cpu_time;
           const py::gil_scoped_release release;
@@ -522,9 +527,10 @@ void bind_simulation(py::module_& m) {
         },
         py::arg("scenario"), py::arg("out_dir"), py::kw_only(), py::arg("set") = py::none(),
         py::arg("policy") = py::none(), py::arg("seed") = py::none(), py::arg("on_roads") = false, py::arg("jobs") = 1,
-        py::arg("measure_cpu_time") = false,
+        py::arg("measure_cpu_time") = false, py::arg("commonroad") = py::none(), py::arg("commonroad_step") = 0.1,
         "Runs a scenario as `run` does and writes the files of `maneuvermap run --out out_dir` (trajectories.csv, "
         "map.csv, decisions.csv, summary.json, scene.json; docs/outputs.md), which `maneuvermap plot` draws; "
+        "with `commonroad` also the run as a CommonRoad recording at `commonroad_step` [s] (`--commonroad`); "
         "returns their paths. Releases the GIL.");
 }
 

@@ -223,4 +223,20 @@ TEST(maneuvermap, resolve_writes_a_file_that_runs_as_the_scenario_does) {
   EXPECT_TRUE(bad.out.empty()) << bad.out;
 }
 
+TEST(maneuvermap, a_run_written_as_a_commonroad_recording_is_measured_as_a_recording) {
+  const temp_dir dir("run_commonroad");
+  const std::string xml = (dir / "s5.xml").string();
+  const result r = run("run s5-several-obstacles --out " + (dir / "run").string() + " --commonroad " + xml, "run_commonroad");
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_TRUE(contains(read_file(dir / "s5.xml"), "commonRoadVersion=\"2020a\"")) << read_file(dir / "s5.xml");
+  const result measured = run("measure " + xml + " --agent all --out " + (dir / "measured").string(), "measure_commonroad");
+  ASSERT_EQ(measured.code, 0) << measured.err;
+  EXPECT_TRUE(contains(measured.out, "s5: CommonRoad 2020a, 4 road users and obstacles, time step 0.100 s")) << measured.out;
+  const result off_grid = run("run s5-several-obstacles --out " + (dir / "never").string() + " --commonroad " + xml +
+                                  " --commonroad-step 0.025",
+                              "run_commonroad_off_grid");
+  EXPECT_EQ(off_grid.code, 2);
+  EXPECT_TRUE(contains(off_grid.err, "--commonroad-step 0.025000: expected a whole multiple of the run's time step")) << off_grid.err;
+}
+
 }  // namespace

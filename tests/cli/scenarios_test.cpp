@@ -9,6 +9,7 @@
 
 #include "cli/support.hpp"
 #include "mm/cli/commands.hpp"
+#include "mm/commonroad/reader.hpp"
 #include "mm/drivable_area.hpp"
 #include "mm/footprint.hpp"
 #include "sim/scenarios.hpp"
@@ -313,6 +314,55 @@ TEST(example_scenarios, in_the_roundabout_s_lanes_a_brakes_longer_and_its_footpr
 }
 
 // --- output files ------------------------------------------------------------------------------
+
+TEST(cli_outputs, a_run_written_as_a_commonroad_recording_has_every_road_user_where_the_run_had_it) {
+  const sf::loaded_scenario loaded = sf::load("s5-several-obstacles");
+  const temp_dir dir("commonroad_export");
+  run_settings settings;
+  settings.out_dir = dir.path();
+  settings.commonroad_file = dir / "s5.xml";
+  settings.commonroad_step = 0.1;
+  const run_outcome outcome = run_scenario(loaded, settings);
+  EXPECT_EQ(outcome.files.back(), (dir / "s5.xml").string());
+  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(dir / "s5.xml");
+  EXPECT_DOUBLE_EQ(recording.time_step, 0.1);
+  ASSERT_EQ(recording.obstacles.size(), 4U);  // A, two crossing vehicles, the pedestrian
+  EXPECT_EQ(recording.lanelets.size(), loaded.roads.size());
+  ASSERT_EQ(recording.planning_problems.size(), 1U);
+  EXPECT_EQ(recording.planning_problems[0].id, 1U);
+  EXPECT_TRUE(recording.planning_problems[0].initial == recording.obstacles[0].states.front());
+  // Every state is the run's row at its time: trajectories.csv has t, agent, x, y, heading, speed.
+  std::vector<std::string> names;
+  for (const auto& v : loaded.scenario.planning_vehicles) names.push_back(v.name);
+  for (const auto& v : loaded.scenario.scripted_vehicles) names.push_back(v.name);
+  for (const auto& p : loaded.scenario.pedestrians) names.push_back(p.name);
+  const auto rows = csv_rows(dir / "trajectories.csv");
+  std::size_t compared = 0;
+  for (const auto& row : rows) {
+    const double t = std::stod(row[0]);
+    const double k = std::round(t / 0.1);
+    if (std::abs(t - 0.1 * k) > 1e-9) continue;
+    const auto agent = std::find(names.begin(), names.end(), row[1]);
+    ASSERT_NE(agent, names.end()) << row[1];
+    const mm::commonroad::obstacle& o = recording.obstacles[static_cast<std::size_t>(agent - names.begin())];
+    EXPECT_EQ(o.type, agent - names.begin() == 3 ? "pedestrian" : "car");
+    const auto x = std::find_if(o.states.begin(), o.states.end(), [&](const auto& s) { return s.step == static_cast<std::int64_t>(k); });
+    ASSERT_NE(x, o.states.end()) << row[1] << " at " << t;
+    EXPECT_NEAR(x->position.x, std::stod(row[2]), 1e-6);
+    EXPECT_NEAR(x->position.y, std::stod(row[3]), 1e-6);
+    EXPECT_NEAR(x->orientation, std::stod(row[4]), 1e-6);
+    EXPECT_NEAR(x->velocity, std::stod(row[5]), 1e-6);
+    ++compared;
+  }
+  std::size_t states = 0;
+  for (const auto& o : recording.obstacles) states += o.states.size();
+  EXPECT_EQ(compared, states) << "a state for every recorded row, and no other";
+
+  settings.commonroad_step = 0.015;  // not a whole number of 0.01 s steps
+  settings.out_dir = dir / "never";
+  EXPECT_THROW(run_scenario(loaded, settings), input_error);
+  EXPECT_FALSE(std::filesystem::exists(dir / "never"));
+}
 
 TEST(cli_outputs, a_vehicle_planning_without_a_map_column_has_its_decisions_and_no_map_rows) {
   sf::loaded_scenario loaded = sf::load("s5-several-obstacles");

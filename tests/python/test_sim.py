@@ -476,3 +476,18 @@ def test_files_that_cannot_be_written_raise_os_errors_with_the_path(tmp_path):
     assert str(blocked) in str(run_error.value)
     with pytest.raises(OSError):
         mm.sim.write_sweep("table1", blocked, repetitions=1)
+
+
+def test_a_run_written_as_a_commonroad_recording_is_measured_as_one(tmp_path):
+    xml = tmp_path / "s4.xml"
+    files = mm.sim.write_run("s4-pedestrian", tmp_path / "run", commonroad=xml)
+    assert files[-1] == str(xml)
+    recording = mm.commonroad.read_scenario(xml)
+    assert recording.time_step == 0.1 and [o.type for o in recording.obstacles] == ["car", "pedestrian"]
+    assert mm.commonroad.scenario_xml(recording) == xml.read_text()
+    # The car (A) measured at every recorded step of the 8 s run, with room to spare throughout.
+    measured = mm.commonroad.measure(recording, recording.obstacles[0].id)
+    assert len(measured.times) == len(recording.obstacles[0].states) == 81
+    assert 0.0 < measured.rooms.min() < 1.0
+    with pytest.raises(ValueError, match="expected a whole multiple of the run's time step"):
+        mm.sim.write_run("s4-pedestrian", tmp_path / "never", commonroad=xml, commonroad_step=0.025)

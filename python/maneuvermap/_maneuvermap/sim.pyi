@@ -1251,8 +1251,8 @@ class sweep_record:
     def __len__(self) -> int: ...
     def __repr__(self) -> str: ...
 
-def write_run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], out_dir: Union[str, os.PathLike[str]], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., measure_cpu_time: bool = ...) -> List[str]:
-    """Runs a scenario as `run` does and writes the files of `maneuvermap run --out out_dir` (trajectories.csv, map.csv, decisions.csv, summary.json, scene.json; docs/outputs.md), which `maneuvermap plot` draws; returns their paths. Releases the GIL."""
+def write_run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], out_dir: Union[str, os.PathLike[str]], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., measure_cpu_time: bool = ..., commonroad: Optional[Union[str, os.PathLike[str]]] = ..., commonroad_step: float = ...) -> List[str]:
+    """Runs a scenario as `run` does and writes the files of `maneuvermap run --out out_dir` (trajectories.csv, map.csv, decisions.csv, summary.json, scene.json; docs/outputs.md), which `maneuvermap plot` draws; with `commonroad` also the run as a CommonRoad recording at `commonroad_step` [s] (`--commonroad`); returns their paths. Releases the GIL."""
     ...
 
 @overload

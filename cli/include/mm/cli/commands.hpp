@@ -28,6 +28,10 @@ struct run_settings {
   bool measure_cpu_time = false;  ///< `--timing`: fill cpu_us and the CPU fields of summary.json
   std::size_t jobs = 1;  ///< `--jobs`: threads planning the vehicles of a step (outputs do not depend on it)
   std::ostream* progress = nullptr;  ///< where to show progress (a terminal), or null
+  /// `--commonroad FILE.xml`: also the run as a CommonRoad recording (`commonroad_recording`), its
+  /// states every `commonroad_step` [s] (a whole multiple of the run's time step); empty: none.
+  std::filesystem::path commonroad_file;
+  double commonroad_step = 0.1;
 };
 
 /// What a run produced.
@@ -41,7 +45,8 @@ struct run_outcome {
 /// scene.json into `settings.out_dir` (docs/outputs.md). Without CPU timing the files are a
 /// function of the scenario, its parameters and its seed alone (byte-identical on every run).
 /// Throws std::invalid_argument (`mm::sim::validation_error`) before writing anything when the
-/// scenario is invalid, std::runtime_error when a file cannot be written.
+/// scenario is invalid, input_error (also before) when `commonroad_step` is not a whole multiple
+/// of its time step, std::runtime_error when a file cannot be written.
 run_outcome run_scenario(const scenario_file::loaded_scenario& loaded, const run_settings& settings);
 
 /// The §12 metrics as a small aligned table, one row per planning vehicle (`maneuvermap run`).
