@@ -3,7 +3,8 @@
 // at its last state, or be refused with a measure_error, and the planner must plan on that input
 // (indices in [0, 1]) or refuse it with a status, under ADJ and under the robust policy alike; and
 // its replay with that road user driven by the planner must be a valid simulation that takes a few
-// steps, or be refused with a measure_error.
+// steps, or be refused with a measure_error. Every scenario that reads must also be written
+// (`scenario_xml`, which reads its own text back and throws unless it is the same scenario).
 // Any other exception, a crash, a leak or a hang is a bug.
 // Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
 #include <cstddef>
@@ -14,12 +15,14 @@
 #include "mm/commonroad/measure.hpp"
 #include "mm/commonroad/reader.hpp"
 #include "mm/commonroad/replay.hpp"
+#include "mm/commonroad/writer.hpp"
 #include "mm/sim/simulation.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   try {
     const mm::commonroad::scenario s = mm::commonroad::read_scenario_text(text, "fuzz.xml");
+    (void)mm::commonroad::scenario_xml(s);
     const std::vector<std::uint32_t> users = mm::commonroad::measurable_road_users(s);
     if (users.empty()) return 0;
     mm::commonroad::measure_options options;
