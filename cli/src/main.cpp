@@ -6,12 +6,12 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <cerrno>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -238,7 +238,13 @@ int sweep_command(const sweep_options& o) {
     (void)sf::load_text(spec.scenario_text, spec.scenario_source, check);
     spec.on_roads = true;
   }
-  if (o.repetitions) spec.repetitions = *o.repetitions;
+  if (o.repetitions) {
+    try {
+      mm::cli::set_repetitions(spec, *o.repetitions);
+    } catch (const std::invalid_argument& e) {
+      throw mm::cli::input_error(std::string("--") + e.what());
+    }
+  }
   mm::cli::sweep_settings settings;
   settings.out_dir = o.out.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(o.out);
   settings.jobs = o.jobs;

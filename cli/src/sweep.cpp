@@ -48,7 +48,7 @@ using output::write_text;
 
 namespace sf = mm::scenario_file;
 
-constexpr std::size_t max_runs = 1000000;
+constexpr std::size_t max_runs = largest_run_count;
 
 const std::vector<std::string> sweep_keys{"format",   "name", "description", "scenario",    "agent",
                                           "parameters", "policies", "repetitions", "seed", "keep_runs"};
@@ -513,6 +513,17 @@ sweep_spec load_sweep(std::string_view file_or_builtin) {
   const std::optional<std::string> text = read_whole_file(arg);
   if (!text) throw sf::scenario_error(arg, 0, 0, "", std::string("cannot read the file: ") + std::strerror(errno));
   return load_sweep_text(*text, arg, std::filesystem::path(arg).parent_path());
+}
+
+void set_repetitions(sweep_spec& spec, std::size_t repetitions) {
+  std::size_t cells = std::max<std::size_t>(1, spec.policies.size());
+  for (const sweep_parameter& p : spec.parameters) cells *= p.values.size();
+  if (repetitions == 0 || repetitions > largest_run_count / cells) {
+    throw std::invalid_argument("repetitions = " + std::to_string(repetitions) + ": expected from 1 to " +
+                                std::to_string(largest_run_count / cells) + " (" + std::to_string(cells) +
+                                " cells; at most " + std::to_string(largest_run_count) + " runs in all)");
+  }
+  spec.repetitions = repetitions;
 }
 
 std::vector<sweep_run> expand(const sweep_spec& spec) {

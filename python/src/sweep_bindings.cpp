@@ -109,12 +109,7 @@ void bind_sweeps(py::module_& m) {
            std::optional<std::size_t> repetitions, bool on_roads, bool keep_runs) {
           const std::string name = py::str(py::module_::import("os").attr("fspath")(sweep));
           cli::sweep_spec spec = cli::load_sweep(name);
-          if (repetitions) {
-            if (*repetitions < 1 || *repetitions > 1'000'000) {
-              throw py::value_error("repetitions = " + std::to_string(*repetitions) + ": expected from 1 to 1000000");
-            }
-            spec.repetitions = *repetitions;
-          }
+          if (repetitions) cli::set_repetitions(spec, *repetitions);  // std::invalid_argument: ValueError
           if (on_roads) {
             scenario_file::load_options check;  // once, before any run, as the command line does
             check.on_roads = true;

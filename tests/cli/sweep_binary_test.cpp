@@ -125,6 +125,11 @@ TEST(maneuvermap_sweep, a_bad_sweep_file_or_option_exits_2) {
   EXPECT_EQ(zero_jobs.code, 2);
   EXPECT_TRUE(contains(zero_jobs.err, "--jobs: expected an integer from 1 to 256, got 0")) << zero_jobs.err;
   EXPECT_EQ(run("sweep table1 --repetitions 0", "bad_repetitions").code, 2);
+  // 50 cells × 1000000 repetitions would be 5·10⁷ runs: refused before any run.
+  const result too_many = run("sweep table1 --repetitions 1000000", "too_many_repetitions");
+  EXPECT_EQ(too_many.code, 2);
+  EXPECT_TRUE(contains(too_many.err, "--repetitions = 1000000: expected from 1 to 20000 (50 cells; at most 1000000 runs in all)"))
+      << too_many.err;
 }
 
 TEST(maneuvermap_plot, missing_target_python_or_script_exit_2) {

@@ -47,8 +47,10 @@ def test_a_sweep_file_with_its_runs_kept_and_bad_arguments(source_dir, tmp_path)
     assert crashed.tolist() == [c == "1" for c in (r["crash"] for r in csv.DictReader(open(tmp_path / "s2" / "runs.csv")))]
     with pytest.raises(mm.sim.scenario_error, match="did you mean table1"):
         mm.sim.write_sweep("tabel1", tmp_path / "never")
-    with pytest.raises(ValueError, match="repetitions = 0: expected from 1 to 1000000"):
+    with pytest.raises(ValueError, match="repetitions = 0: expected from 1 to 20000 \\(50 cells"):
         mm.sim.write_sweep("table1", tmp_path / "never", repetitions=0)
+    with pytest.raises(ValueError, match="repetitions = 20001: expected from 1 to 20000"):
+        mm.sim.write_sweep("table1", tmp_path / "never", repetitions=20001)
     (tmp_path / "lone.yaml").write_text(
         "format: maneuvermap-scenario/1\nname: lone\nduration_s: 0.2\nagents:\n"
         "  - {name: A, kind: planning_vehicle, desired_speed_mps: 10,\n"

@@ -75,6 +75,13 @@ sweep_spec load_sweep_text(std::string_view text, const std::string& source, con
 /// `.yml` is a file; otherwise a built-in name if there is one, else a file).
 sweep_spec load_sweep(std::string_view file_or_builtin);
 
+/// The most runs a sweep may have in all (parameter values × policies × repetitions).
+inline constexpr std::size_t largest_run_count = 1'000'000;
+
+/// Replaces the repetitions of `spec` (`--repetitions N`); throws `std::invalid_argument`, naming the
+/// runs it would make, when N is 0 or the sweep would have more than `largest_run_count` runs.
+void set_repetitions(sweep_spec& spec, std::size_t repetitions);
+
 /// One run of the grid.
 struct sweep_run {
   std::size_t index = 0;             ///< position in grid order (= row of runs.csv)
