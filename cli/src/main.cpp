@@ -6,12 +6,10 @@
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -183,10 +181,7 @@ void write_scenario(const sf::loaded_scenario& s, const std::string& file) {
     std::cout << text;
     return;
   }
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  out << text;
-  out.close();
-  if (!out) throw std::runtime_error(file + ": cannot write the file: " + std::strerror(errno));
+  mm::cli::output::write_text(file, text);
 }
 
 int resolve_command(const scenario_options& o, const std::string& out) {

@@ -2,7 +2,9 @@
 // What the commands that write output files share (docs/outputs.md): JSON numbers rounded to a
 // few decimals, footprints as JSON, and whole-file writes that report failure.
 
+#include <cerrno>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -69,12 +71,12 @@ inline json footprint_json(const mm::footprint& shape) {
   return {{"shape", "polygon"}, {"vertices_m", points(std::get<mm::convex_polygon>(shape).vertices)}};
 }
 
-/// Writes `text` to `file`; throws std::runtime_error naming the file when that fails.
+/// Writes `text` to `file`; throws std::runtime_error naming the file and the reason when that fails.
 inline void write_text(const std::filesystem::path& file, const std::string& text) {
   std::ofstream out(file, std::ios::binary);
   out << text;
   out.close();
-  if (!out) throw std::runtime_error("cannot write " + file.string());
+  if (!out) throw std::runtime_error(file.string() + ": cannot write the file: " + std::strerror(errno));
 }
 
 }  // namespace mm::cli::output
