@@ -1,30 +1,24 @@
 #include "mm/sim/path.hpp"
 
 #include <algorithm>
-#include <array>
-#include <charconv>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "mm/maneuver.hpp"
+#include "number_text.hpp"
 
 namespace mm::sim {
 namespace {
 
-/// The shortest decimal text that reads back as `value`.
-std::string text(double value) {
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
+using detail::number_text;
 
-std::string text(vec2 point) { return "[" + text(point.x) + ", " + text(point.y) + "]"; }
+std::string text(vec2 point) { return "[" + number_text(point.x) + ", " + number_text(point.y) + "]"; }
 
 void require_positive(double value, const char* what) {
   if (!(std::isfinite(value) && value > 0.0)) {
-    throw std::invalid_argument(std::string("path: ") + what + " = " + text(value) +
+    throw std::invalid_argument(std::string("path: ") + what + " = " + number_text(value) +
                                 ": expected a positive finite number");
   }
 }
@@ -97,7 +91,7 @@ path& path::straight(double length) {
 path& path::turn(double radius, double angle) {
   require_positive(radius, "turn radius");
   if (!std::isfinite(angle) || angle == 0.0) {
-    throw std::invalid_argument("path: turn angle = " + text(angle) + ": expected a finite non-zero angle");
+    throw std::invalid_argument("path: turn angle = " + number_text(angle) + ": expected a finite non-zero angle");
   }
   const double curvature = (angle > 0.0 ? 1.0 : -1.0) / radius;
   const path_segment seg{end_, radius * std::abs(angle), curvature, length()};
@@ -123,7 +117,7 @@ path& path::line_to(vec2 point) {
 path& path::curve(double length, double curvature) {
   require_positive(length, "curve length");
   if (!std::isfinite(curvature)) {
-    throw std::invalid_argument("path: curve curvature = " + text(curvature) + ": expected a finite number [1/m]");
+    throw std::invalid_argument("path: curve curvature = " + number_text(curvature) + ": expected a finite number [1/m]");
   }
   const path_segment seg{end_, length, curvature, this->length()};
   segments_.push_back(seg);

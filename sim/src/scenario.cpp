@@ -1,6 +1,5 @@
 #include "mm/sim/scenario.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <set>
@@ -8,17 +7,12 @@
 
 #include "mm/drivable_area.hpp"
 #include "mm/planner.hpp"
+#include "number_text.hpp"
 
 namespace mm::sim {
 namespace {
 
-std::string number(double value) {
-  if (std::isnan(value)) return "NaN";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
+using detail::number_text;
 
 /// Collects the first problem; `where` names the agent (or "scenario") being checked.
 class checker {
@@ -30,7 +24,7 @@ class checker {
     if (!error) error = where + (where.empty() ? "" : ": ") + field + message;
   }
   void require(bool ok, const std::string& field, double value, const std::string& expected) {
-    if (!ok) fail(field, " = " + number(value) + ": expected " + expected);
+    if (!ok) fail(field, " = " + number_text(value) + ": expected " + expected);
   }
   void positive(const std::string& field, double value, const std::string& unit) {
     require(std::isfinite(value) && value > 0.0, field, value, "a positive finite number [" + unit + "]");
@@ -49,7 +43,7 @@ class checker {
     }
     require(std::isfinite(start_arc_length) && start_arc_length >= 0.0 && start_arc_length < p.length(),
             prefix + "start_arc_length", start_arc_length,
-            "an arc length in [0, " + number(p.length()) + ") m, the path's length");
+            "an arc length in [0, " + number_text(p.length()) + ") m, the path's length");
   }
 
   void profile(const std::string& field, const speed_profile& profile) {
@@ -61,7 +55,7 @@ class checker {
       non_negative(at + ".speed", knots[i].speed, "m/s");
       if (i > 0) {
         require(knots[i].time > knots[i - 1].time, at + ".time", knots[i].time,
-                "a time after the previous knot's " + number(knots[i - 1].time) + " s");
+                "a time after the previous knot's " + number_text(knots[i - 1].time) + " s");
       }
     }
   }
@@ -74,8 +68,8 @@ class checker {
       require(std::isfinite(m.stop->arc_length) && m.stop->arc_length >= m.start_arc_length &&
                   m.stop->arc_length <= m.path.length(),
               prefix + "stop.arc_length", m.stop->arc_length,
-              "an arc length from start_arc_length = " + number(m.start_arc_length) + " m to the path's length " +
-                  number(m.path.length()) + " m");
+              "an arc length from start_arc_length = " + number_text(m.start_arc_length) + " m to the path's length " +
+                  number_text(m.path.length()) + " m");
       if (m.stop->duration) positive(prefix + "stop.duration", *m.stop->duration, "s");
     }
   }
@@ -125,11 +119,11 @@ void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_s
   c.require(v.planning_period >= 1, "planning_period", static_cast<double>(v.planning_period),
             "an integer ≥ 1 [steps]");
   c.require(v.planner.history_window >= time_step, "planner.history_window", v.planner.history_window,
-            "at least the time step " + number(time_step) + " s, so that a track holds two observations");
+            "at least the time step " + number_text(time_step) + " s, so that a track holds two observations");
   c.require(!(v.planner.history_window / time_step > largest_history_steps), "planner.history_window",
             v.planner.history_window,
-            "at most " + number(largest_history_steps) + " time steps of " + number(time_step) + " s (" +
-                number(largest_history_steps * time_step) + " s), the longest track the simulator keeps");
+            "at most " + number_text(largest_history_steps) + " time steps of " + number_text(time_step) + " s (" +
+                number_text(largest_history_steps * time_step) + " s), the longest track the simulator keeps");
   if (c.error || v.path.empty()) return;
   // The planner's own checks of the limits, the footprint and the configuration.
   mm::plan_input probe;
@@ -171,9 +165,9 @@ std::optional<std::string> validation_error(const scenario& s) {
   c.positive("duration", s.duration, "s");
   c.positive("time_step", s.time_step, "s");
   c.require(!(s.time_step > s.duration), "time_step", s.time_step,
-            "at most the duration " + number(s.duration) + " s");
+            "at most the duration " + number_text(s.duration) + " s");
   c.require(!(s.duration / s.time_step > largest_step_count), "duration", s.duration,
-            "at most 10^7 time steps of " + number(s.time_step) + " s (" + number(largest_step_count * s.time_step) +
+            "at most 10^7 time steps of " + number_text(s.time_step) + " s (" + number_text(largest_step_count * s.time_step) +
                 " s)");
   c.non_negative("noise.position_sd", s.noise.position_sd, "m");
   c.non_negative("noise.heading_sd", s.noise.heading_sd, "rad");
@@ -224,13 +218,13 @@ std::optional<std::string> command_error(const planning_vehicle& v, double speed
   const ego_limits& limits = v.limits;
   if (!std::isfinite(u.acceleration) || u.acceleration < -limits.max_deceleration ||
       u.acceleration > limits.max_acceleration) {
-    return "acceleration = " + number(u.acceleration) + ": expected from " + number(-limits.max_deceleration) +
-           " to " + number(limits.max_acceleration) + " [m/s²]";
+    return "acceleration = " + number_text(u.acceleration) + ": expected from " + number_text(-limits.max_deceleration) +
+           " to " + number_text(limits.max_acceleration) + " [m/s²]";
   }
   const double most = mm::max_curvature(speed, limits);
   if (!std::isfinite(u.curvature) || std::abs(u.curvature) > most) {
-    return "curvature = " + number(u.curvature) + ": expected from " + number(-most) + " to " + number(most) +
-           " [1/m] at its speed of " + number(speed) + " m/s";
+    return "curvature = " + number_text(u.curvature) + ": expected from " + number_text(-most) + " to " + number_text(most) +
+           " [1/m] at its speed of " + number_text(speed) + " m/s";
   }
   return std::nullopt;
 }
