@@ -1,7 +1,6 @@
 #include "mm/commonroad/replay.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -11,6 +10,7 @@
 #include "mm/commonroad/measure.hpp"
 #include "mm/footprint.hpp"
 #include "mm/geometry.hpp"
+#include "mm/number_text.hpp"
 #include "recording.hpp"
 
 namespace mm::commonroad {
@@ -60,13 +60,6 @@ sim::speed_profile profile_of(const recorded_path& p, double dt) {
   }
   profile.knots.push_back({dt * static_cast<double>(n - 1), std::max(last, 1.0)});
   return profile;
-}
-
-/// `value` to 6 significant digits ("1e+117", "0.1").
-std::string general(double value) {
-  char buffer[32];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 6).ptr;
-  return std::string(buffer, end);
 }
 
 measure_error cannot_replay(const obstacle& o, const std::string& why) {
@@ -128,9 +121,9 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
   }
   out.duration = std::max(step_time(s, last_step), out.time_step);
   if (!(out.duration / out.time_step <= sim::largest_step_count)) {
-    throw measure_error("the recording lasts " + general(out.duration) + " s (timeStepSize " + general(s.time_step) +
+    throw measure_error("the recording lasts " + number_text(out.duration, 6) + " s (timeStepSize " + number_text(s.time_step, 6) +
                         " s): expected at most 10^7 simulation steps of 0.01 s (" +
-                        general(sim::largest_step_count * out.time_step) + " s) to replay");
+                        number_text(sim::largest_step_count * out.time_step, 6) + " s) to replay");
   }
 
   const auto* body = std::get_if<rectangle>(&agent.shape);

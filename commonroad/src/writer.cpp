@@ -3,9 +3,7 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
-#include <array>
 #include <cerrno>
-#include <charconv>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -14,16 +12,10 @@
 #include <variant>
 
 #include "mm/commonroad/reader.hpp"
+#include "mm/number_text.hpp"
 
 namespace mm::commonroad {
 namespace {
-
-/// The shortest decimal text that reads back as `value`.
-std::string number_text(double value) {
-  std::array<char, 32> buffer{};
-  const auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value);
-  return std::string(buffer.data(), result.ptr);
-}
 
 void add_text(pugi::xml_node parent, const char* name, const std::string& text) {
   parent.append_child(name).text().set(text.c_str());

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <array>
 #include <bit>
-#include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <functional>
@@ -19,6 +18,7 @@
 #include "mm/assignment_search.hpp"
 #include "mm/collision_sets.hpp"
 #include "mm/maneuverability.hpp"
+#include "mm/number_text.hpp"
 #include "mm/road_constraint.hpp"
 #include "union_cells.hpp"
 
@@ -36,13 +36,6 @@ bool can_interact(const ego_state& ego, const forecast_obstacle& obstacle, const
   const double reach = ego_travel + obstacle_travel + bounding_radius(ego.shape) +
                        bounding_radius(obstacle.shape) + config.safety_margin;
   return squared_norm(obstacle.motion.pose.position - ego.pose.position) < reach * reach;
-}
-
-/// `value` to 3 significant digits, for messages ("2.25e-28", "0.0001").
-std::string three_digits(double value) {
-  char buffer[32];
-  const auto end = std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::general, 3).ptr;
-  return std::string(buffer, end);
 }
 
 plan_result invalid(std::string error) {
@@ -564,10 +557,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       const std::size_t j = relevant_track[k];
       return invalid("obstacles[" + std::to_string(j) + "] (id " + std::to_string(in.obstacles[j].id) +
                      "): the collision time step the tunneling bound of spec §5 needs with it is " +
-                     three_digits(step) + " s; expected at least " + three_digits(smallest_collision_time_step) +
+                     number_text(step, 3) + " s; expected at least " + number_text(smallest_collision_time_step, 3) +
                      " s: footprints of road users (not of micrometres) and speeds of road users (the ego's top "
                      "speed and the obstacle's estimated speed add up to " +
-                     three_digits(tunneling_relative_speed(ego, relevant[k], window)) + " m/s)");
+                     number_text(tunneling_relative_speed(ego, relevant[k], window), 3) + " m/s)");
     }
     window.time_step = std::min(window.time_step, step);
   }
@@ -580,8 +573,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     const double step = road_time_step(ego, window);
     if (step < smallest_collision_time_step) {
       return invalid("ego: the collision time step the road constraint needs (its smallest dimension over its top "
-                     "speed) is " + three_digits(step) + " s; expected at least " +
-                     three_digits(smallest_collision_time_step) + " s: a footprint and a speed of a road user");
+                     "speed) is " + number_text(step, 3) + " s; expected at least " +
+                     number_text(smallest_collision_time_step, 3) + " s: a footprint and a speed of a road user");
     }
     window.time_step = std::min(window.time_step, step);
   }
@@ -591,10 +584,10 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   if (const double maneuvers = sampled_maneuver_count(options.resolution),
       times = sample_time_count(config.collision_window, window.time_step);
       maneuvers * times > largest_sample_time_pairs) {
-    return invalid("config.collision_window = " + three_digits(config.collision_window) +
-                   " s at the collision time step of " + three_digits(window.time_step) +
-                   " s the tunneling bound of spec §5 needs with the relevant obstacles: " + three_digits(times) +
-                   " sample times for " + three_digits(maneuvers) +
+    return invalid("config.collision_window = " + number_text(config.collision_window, 3) +
+                   " s at the collision time step of " + number_text(window.time_step, 3) +
+                   " s the tunneling bound of spec §5 needs with the relevant obstacles: " + number_text(times, 3) +
+                   " sample times for " + number_text(maneuvers, 3) +
                    " sampled maneuvers exceed the 5e8 pairs a planning step may hold; expected a shorter window, "
                    "a coarser resolution, or road users that are larger or slower");
   }

@@ -1,22 +1,14 @@
-#include <charconv>
 #include <cmath>
 #include <span>
 #include <string>
 #include <type_traits>
 
 #include "mm/collision.hpp"
+#include "mm/number_text.hpp"
 #include "mm/planner.hpp"
 
 namespace mm {
 namespace {
-
-std::string number(double value) {
-  if (std::isnan(value)) return "NaN";
-  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, result.ptr);
-}
 
 /// A field name or an expectation: text, or a callable that builds it (only when a check fails).
 template <class Text>
@@ -35,7 +27,7 @@ struct checker {
   std::optional<std::string> error;
   template <class Field, class What>
   void require(bool ok, Field&& field, double value, What&& what) {
-    if (!error && !ok) error = text(field) + " = " + number(value) + ": expected " + text(what);
+    if (!error && !ok) error = text(field) + " = " + number_text(value) + ": expected " + text(what);
   }
   template <class Field>
   void finite(Field&& field, double value) {
@@ -89,7 +81,7 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.pose("ego.pose", in.ego.pose);
   c.non_negative("ego.speed", in.ego.speed, "m/s");
   c.require(!(in.ego.speed > l.speed_cap), "ego.speed", in.ego.speed,
-            [&] { return "at most ego.limits.speed_cap = " + number(l.speed_cap) + " m/s"; });
+            [&] { return "at most ego.limits.speed_cap = " + number_text(l.speed_cap) + " m/s"; });
   c.shape("ego.shape", in.ego.shape);
   c.finite("nominal.acceleration", in.nominal.acceleration);
   c.finite("nominal.curvature", in.nominal.curvature);
@@ -98,7 +90,7 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.positive("config.displacement_horizon", k.displacement_horizon, "seconds");
   c.positive("config.collision_window", k.collision_window, "seconds");
   c.require(!(k.collision_window < k.displacement_horizon), "config.collision_window", k.collision_window,
-            [&] { return "at least config.displacement_horizon = " + number(k.displacement_horizon) + " s"; });
+            [&] { return "at least config.displacement_horizon = " + number_text(k.displacement_horizon) + " s"; });
   c.positive("config.forecast_step", k.forecast_step, "seconds");
   c.require(k.forecast_count >= 1, "config.forecast_count", static_cast<double>(k.forecast_count),
             "at least 1 (the forecast grid is empty)");
@@ -108,8 +100,8 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.require(!(largest_forecast > k.collision_window + 1e-9), "config.forecast_count", static_cast<double>(k.forecast_count),
             [&] {
               return "a forecast grid within the collision window: the largest forecast time " +
-                     number(largest_forecast) + " s exceeds config.collision_window = " +
-                     number(k.collision_window) + " s";
+                     number_text(largest_forecast) + " s exceeds config.collision_window = " +
+                     number_text(k.collision_window) + " s";
             });
   c.positive("config.history_window", k.history_window, "seconds");
   c.non_negative("config.safety_margin", k.safety_margin, "metres");
@@ -131,12 +123,10 @@ std::optional<std::string> validation_error(const plan_input& in) {
     c.require(!(maneuvers * times > largest_sample_time_pairs), "config.collision_window", k.collision_window, [&] {
       // Four significant digits, rounded down: still within the bound.
       const double longest = (std::floor(largest_sample_time_pairs / maneuvers) - 1.0) * k.max_time_step * (1.0 - 1e-3);
-      char buffer[32];
-      const auto end = std::to_chars(buffer, buffer + sizeof buffer, longest, std::chars_format::general, 4).ptr;
-      return "at most " + std::string(buffer, end) + " s with config.max_time_step = " + number(k.max_time_step) +
+      return "at most " + number_text(longest, 4) + " s with config.max_time_step = " + number_text(k.max_time_step) +
              " s and config.resolution " + std::to_string(k.resolution.accelerations) + " × " +
-             std::to_string(k.resolution.curvatures) + ": " + number(times) + " sample times for " +
-             number(maneuvers) + " sampled maneuvers exceed the 5e8 pairs a planning step may hold";
+             std::to_string(k.resolution.curvatures) + ": " + number_text(times) + " sample times for " +
+             number_text(maneuvers) + " sampled maneuvers exceed the 5e8 pairs a planning step may hold";
     });
   }
   c.require(k.max_exhaustive_assignments >= 1, "config.max_exhaustive_assignments",
@@ -149,7 +139,7 @@ std::optional<std::string> validation_error(const plan_input& in) {
               "config.policy.constant_forecast_time", tau,
               [&] {
                 return "a forecast time on the grid: a multiple of config.forecast_step = " +
-                       number(k.forecast_step) + " s from 0 to " + number(largest_forecast) + " s";
+                       number_text(k.forecast_step) + " s from 0 to " + number_text(largest_forecast) + " s";
               });
   }
 
@@ -172,12 +162,12 @@ std::optional<std::string> validation_error(const plan_input& in) {
       c.finite([&] { return at() + ".speed"; }, obs.speed);
       if (i > 0) {
         c.require(obs.time > o.history[i - 1].time, [&] { return at() + ".time"; }, obs.time,
-                  [&] { return "a time after the previous observation's " + number(o.history[i - 1].time) + " s"; });
+                  [&] { return "a time after the previous observation's " + number_text(o.history[i - 1].time) + " s"; });
       }
     }
     if (!c.error && !o.history.empty()) {
       c.require(!(o.history.back().time > in.time + 1e-9), [&] { return field() + ".history.back().time"; },
-                o.history.back().time, [&] { return "no later than the planning time " + number(in.time) + " s"; });
+                o.history.back().time, [&] { return "no later than the planning time " + number_text(in.time) + " s"; });
     }
     if (!c.error && o.motion) {
       c.pose([&] { return field() + ".motion.pose"; }, o.motion->pose);

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "mm/drivable_area.hpp"
+#include "mm/number_text.hpp"
 #include "mm/scenario_file/builtin.hpp"
 #include "mm/sim/meeting.hpp"
 #include "reader.hpp"

@@ -6,6 +6,8 @@
 #include <limits>
 #include <set>
 
+#include "mm/number_text.hpp"
+
 namespace mm::scenario_file::detail {
 namespace {
 
@@ -364,12 +366,6 @@ double map_view::required_quantity(std::string_view base, units alternatives, ra
   std::string names;
   for (const std::string& k : keys) names += (names.empty() ? "" : " or ") + k;
   ctx_->fail(anchor_, self().path.empty() ? std::string(base) : self().path, "missing required field " + names);
-}
-
-std::string number_text(double value) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, value);
-  return std::string(buffer, r.ptr);
 }
 
 std::vector<std::string> keys_of(std::string_view base, units alternatives) {

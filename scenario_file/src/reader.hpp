@@ -141,9 +141,6 @@ class map_view {
 /// True when `text` is well-formed UTF-8 (no overlong forms, surrogates or code points above U+10FFFF).
 bool is_utf8(std::string_view text);
 
-/// The shortest decimal text that reads back as `value` ("0.5", "40").
-std::string number_text(double value);
-
 /// Every key `base` + suffix for `alternatives`, for `allow` lists.
 std::vector<std::string> keys_of(std::string_view base, units alternatives);
 

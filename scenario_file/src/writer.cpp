@@ -8,13 +8,13 @@
 #include <stdexcept>
 #include <string_view>
 
+#include "mm/number_text.hpp"
 #include "mm/scenario_file/loader.hpp"
 #include "reader.hpp"
 
 namespace mm::scenario_file {
 namespace {
 
-using detail::number_text;
 using mm::sim::path;
 
 /// A YAML emitter that writes the format's values: numbers in their shortest exact form, points

@@ -7,12 +7,10 @@
 #include <string>
 
 #include "mm/maneuver.hpp"
-#include "number_text.hpp"
+#include "mm/number_text.hpp"
 
 namespace mm::sim {
 namespace {
-
-using detail::number_text;
 
 std::string text(vec2 point) { return "[" + number_text(point.x) + ", " + number_text(point.y) + "]"; }
 

@@ -6,13 +6,11 @@
 #include <string_view>
 
 #include "mm/drivable_area.hpp"
+#include "mm/number_text.hpp"
 #include "mm/planner.hpp"
-#include "number_text.hpp"
 
 namespace mm::sim {
 namespace {
-
-using detail::number_text;
 
 /// Collects the first problem; `where` names the agent (or "scenario") being checked.
 class checker {
