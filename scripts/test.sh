@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs the dependencies, builds, and runs the whole test suite twice: an optimised build with
 # warnings as errors, then a build under AddressSanitizer and UndefinedBehaviorSanitizer; then
-# fuzzes the scenario parser and the CommonRoad reader for 30 s each (scripts/fuzz.sh).
+# fuzzes the scenario parser, the CommonRoad reader and the planner for 30 s each (scripts/fuzz.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
@@ -17,4 +17,4 @@ cmake --build build/sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   MM_TEST_SCALE=sanitize ctest --test-dir build/sanitize --output-on-failure -j "$jobs"
 bash scripts/fuzz.sh 30
-echo "all tests passed (release and address+undefined sanitizers), and 30 s of fuzzing of each parser found nothing"
+echo "all tests passed (release and address+undefined sanitizers), and 30 s of fuzzing of each parser and of the planner found nothing"

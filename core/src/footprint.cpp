@@ -4,9 +4,13 @@
 #include <cmath>
 #include <limits>
 
+#include <string>
+
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+
+#include "mm/number_text.hpp"
 
 namespace mm {
 namespace {
@@ -200,16 +204,16 @@ double smallest_dimension(const footprint& shape) {
 }
 
 std::optional<std::string> footprint_error(const footprint& shape) {
-  const auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  const auto size_error = [](const char* what, double v) -> std::optional<std::string> {
+    if (std::isfinite(v) && v > 0.0 && v <= largest_footprint_size) return std::nullopt;
+    return std::string(what) + " must be a positive number of metres up to " + number_text(largest_footprint_size) +
+           ", got " + number_text(v);
+  };
   if (const auto* r = std::get_if<rectangle>(&shape)) {
-    if (!positive(r->length)) return "rectangle length must be a positive finite number of metres, got " + std::to_string(r->length);
-    if (!positive(r->width)) return "rectangle width must be a positive finite number of metres, got " + std::to_string(r->width);
-    return std::nullopt;
+    if (auto e = size_error("rectangle length", r->length)) return e;
+    return size_error("rectangle width", r->width);
   }
-  if (const auto* d = std::get_if<disc>(&shape)) {
-    if (!positive(d->radius)) return "disc radius must be a positive finite number of metres, got " + std::to_string(d->radius);
-    return std::nullopt;
-  }
+  if (const auto* d = std::get_if<disc>(&shape)) return size_error("disc radius", d->radius);
   const auto& v = std::get<convex_polygon>(shape).vertices;
   if (v.size() < 3 || v.size() > max_polygon_vertices) {
     return "polygon must have 3 to " + std::to_string(max_polygon_vertices) + " vertices, got " +
@@ -217,6 +221,10 @@ std::optional<std::string> footprint_error(const footprint& shape) {
   }
   for (const vec2& p : v) {
     if (!std::isfinite(p.x) || !std::isfinite(p.y)) return std::string("polygon vertex is not finite");
+    if (std::abs(p.x) > largest_footprint_size || std::abs(p.y) > largest_footprint_size) {
+      return "polygon vertex (" + number_text(p.x) + ", " + number_text(p.y) + ") lies more than " +
+             number_text(largest_footprint_size) + " m from the reference point";
+    }
   }
   int sign = 0;
   for (std::size_t i = 0; i < v.size(); ++i) {

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstddef>
 
+#include "mm/input_bounds.hpp"
+
 namespace mm {
 namespace {
 
@@ -77,8 +79,11 @@ motion_estimate estimate_motion(const obstacle_track& track, double history_wind
   }
   const line_fit heading = fit_line(times, headings, 0.0);
   const line_fit speed = fit_line(times, speeds, 0.0);
+  // Clamped to what the planner takes (input_bounds.hpp): a fit over observations a few
+  // microseconds apart can give any slope.
   const motion_estimate at_last{{last.pose.position, wrap_angle(heading.value)},
-                                std::max(0.0, speed.value), heading.slope};
+                                std::clamp(speed.value, 0.0, largest_input_speed),
+                                std::clamp(heading.slope, -largest_input_yaw_rate, largest_input_yaw_rate)};
   const double lag = now - last.time;
   if (lag <= 0.0) return at_last;
   return {forecast_pose(at_last, lag, lag), at_last.speed, at_last.yaw_rate};

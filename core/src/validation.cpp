@@ -41,11 +41,27 @@ struct checker {
   void non_negative(Field&& field, double value, const char* unit) {
     require(std::isfinite(value) && value >= 0.0, field, value, [&] { return std::string("a finite number ≥ 0 of ") + unit; });
   }
+  /// A positive finite number up to `largest`.
+  template <class Field>
+  void positive_up_to(Field&& field, double value, double largest, const char* unit) {
+    require(std::isfinite(value) && value > 0.0 && value <= largest, field, value,
+            [&] { return "a positive number of " + std::string(unit) + " up to " + number_text(largest); });
+  }
+  template <class Field>
+  void coordinate(Field&& field, double value) {
+    require(std::isfinite(value) && std::abs(value) <= largest_input_coordinate, field, value,
+            [&] { return "a finite coordinate within ±" + number_text(largest_input_coordinate) + " m"; });
+  }
   template <class Field>
   void pose(Field&& field, const mm::pose& p) {
-    finite([&] { return text(field) + ".position.x"; }, p.position.x);
-    finite([&] { return text(field) + ".position.y"; }, p.position.y);
+    coordinate([&] { return text(field) + ".position.x"; }, p.position.x);
+    coordinate([&] { return text(field) + ".position.y"; }, p.position.y);
     finite([&] { return text(field) + ".heading"; }, p.heading);
+  }
+  template <class Field>
+  void speed(Field&& field, double value) {
+    require(std::isfinite(value) && std::abs(value) <= largest_input_speed, field, value,
+            [&] { return "a finite speed within ±" + number_text(largest_input_speed) + " m/s"; });
   }
   template <class Field>
   void shape(Field&& field, const footprint& f) {
@@ -59,8 +75,9 @@ struct checker {
 bool history_valid(std::span<const observation> history) {
   for (std::size_t i = 0; i < history.size(); ++i) {
     const observation& o = history[i];
-    const bool finite = std::isfinite(o.time) && std::isfinite(o.pose.position.x) &&
-                        std::isfinite(o.pose.position.y) && std::isfinite(o.pose.heading) && std::isfinite(o.speed);
+    const bool finite = std::isfinite(o.time) && std::abs(o.pose.position.x) <= largest_input_coordinate &&
+                        std::abs(o.pose.position.y) <= largest_input_coordinate && std::isfinite(o.pose.heading) &&
+                        std::abs(o.speed) <= largest_input_speed;
     if (!finite || (i > 0 && !(o.time > history[i - 1].time))) return false;
   }
   return true;
@@ -73,11 +90,14 @@ std::optional<std::string> validation_error(const plan_input& in) {
   c.finite("time", in.time);
 
   const ego_limits& l = in.ego.limits;
-  c.positive("ego.limits.max_acceleration", l.max_acceleration, "m/s²");
-  c.positive("ego.limits.max_deceleration", l.max_deceleration, "m/s² (deceleration is given as a positive number)");
-  c.positive("ego.limits.max_lateral_acceleration", l.max_lateral_acceleration, "m/s²");
-  c.positive("ego.limits.min_turning_radius", l.min_turning_radius, "m");
-  c.positive("ego.limits.speed_cap", l.speed_cap, "m/s");
+  c.positive_up_to("ego.limits.max_acceleration", l.max_acceleration, largest_input_acceleration, "m/s²");
+  c.positive_up_to("ego.limits.max_deceleration", l.max_deceleration, largest_input_acceleration,
+                   "m/s² (deceleration is given as a positive number)");
+  c.positive_up_to("ego.limits.max_lateral_acceleration", l.max_lateral_acceleration, largest_input_acceleration, "m/s²");
+  c.require(std::isfinite(l.min_turning_radius) && l.min_turning_radius >= smallest_input_turning_radius,
+            "ego.limits.min_turning_radius", l.min_turning_radius,
+            [&] { return "a finite number of metres of at least " + number_text(smallest_input_turning_radius); });
+  c.positive_up_to("ego.limits.speed_cap", l.speed_cap, largest_input_speed, "m/s");
   c.pose("ego.pose", in.ego.pose);
   c.non_negative("ego.speed", in.ego.speed, "m/s");
   c.require(!(in.ego.speed > l.speed_cap), "ego.speed", in.ego.speed,
@@ -104,7 +124,9 @@ std::optional<std::string> validation_error(const plan_input& in) {
                      number_text(k.collision_window) + " s";
             });
   c.positive("config.history_window", k.history_window, "seconds");
-  c.non_negative("config.safety_margin", k.safety_margin, "metres");
+  c.require(std::isfinite(k.safety_margin) && k.safety_margin >= 0.0 && k.safety_margin <= largest_input_safety_margin,
+            "config.safety_margin", k.safety_margin,
+            [&] { return "a number of metres from 0 to " + number_text(largest_input_safety_margin); });
   c.non_negative("config.effort.longitudinal", k.effort.longitudinal, "s⁴/m²");
   c.non_negative("config.effort.lateral", k.effort.lateral, "s⁴/m²");
   c.require(k.resolution.accelerations >= 2 && k.resolution.accelerations <= largest_sampling_side,
@@ -159,7 +181,7 @@ std::optional<std::string> validation_error(const plan_input& in) {
       const auto at = [&] { return field() + ".history[" + std::to_string(i) + "]"; };
       c.finite([&] { return at() + ".time"; }, obs.time);
       c.pose([&] { return at() + ".pose"; }, obs.pose);
-      c.finite([&] { return at() + ".speed"; }, obs.speed);
+      c.speed([&] { return at() + ".speed"; }, obs.speed);
       if (i > 0) {
         c.require(obs.time > o.history[i - 1].time, [&] { return at() + ".time"; }, obs.time,
                   [&] { return "a time after the previous observation's " + number_text(o.history[i - 1].time) + " s"; });
@@ -168,11 +190,19 @@ std::optional<std::string> validation_error(const plan_input& in) {
     if (!c.error && !o.history.empty()) {
       c.require(!(o.history.back().time > in.time + 1e-9), [&] { return field() + ".history.back().time"; },
                 o.history.back().time, [&] { return "no later than the planning time " + number_text(in.time) + " s"; });
+      c.require(!(in.time - o.history.back().time > largest_observation_age),
+                [&] { return field() + ".history.back().time"; }, o.history.back().time, [&] {
+                  return "no more than " + number_text(largest_observation_age) + " s before the planning time " +
+                         number_text(in.time) + " s";
+                });
     }
     if (!c.error && o.motion) {
       c.pose([&] { return field() + ".motion.pose"; }, o.motion->pose);
       c.non_negative([&] { return field() + ".motion.speed"; }, o.motion->speed, "m/s");
-      c.finite([&] { return field() + ".motion.yaw_rate"; }, o.motion->yaw_rate);
+      c.speed([&] { return field() + ".motion.speed"; }, o.motion->speed);
+      c.require(std::isfinite(o.motion->yaw_rate) && std::abs(o.motion->yaw_rate) <= largest_input_yaw_rate,
+                [&] { return field() + ".motion.yaw_rate"; }, o.motion->yaw_rate,
+                [&] { return "a finite yaw rate within ±" + number_text(largest_input_yaw_rate) + " rad/s"; });
     }
   }
   return c.error;

@@ -211,9 +211,9 @@ class mapper {
   void read_noise(const map_view& v) {
     v.allow(concat(concat({"position_sd_m"}, keys_of("heading_sd", angle_units)), keys_of("speed_sd", speed_units)));
     mm::sim::sensing_noise& n = result_.scenario.noise;
-    n.position_sd = v.quantity_or("position_sd", {metres}, 0.0, range::non_negative);
+    n.position_sd = v.quantity_or("position_sd", {metres}, 0.0, range::noise);
     n.heading_sd = v.quantity_or("heading_sd", angle_units, 0.0, range::non_negative);
-    n.speed_sd = v.quantity_or("speed_sd", speed_units, 0.0, range::speed);
+    n.speed_sd = v.quantity_or("speed_sd", speed_units, 0.0, range::noise);
   }
 
   void read_roundabout(const field& f) {

@@ -113,12 +113,14 @@ void fail_value(const context& ctx, const field& f, const std::string& what) {
 
 double read_number(const context& ctx, const field& f, std::string_view label, range r, double to_si) {
   const std::string expected =
-      r == range::speed || r == range::positive_speed
+      r == range::noise ? "a standard deviation from 0 to " + number_text(mm::sim::largest_noise_sd / to_si) + unit_text(label)
+      : r == range::speed || r == range::positive_speed
           ? std::string(r == range::speed ? "a speed from 0" : "a speed above 0") + " to " +
                 number_text(largest_speed / to_si) + unit_text(label) + " (" + number_text(largest_speed) + " m/s)"
                         : std::string(r == range::positive       ? "a positive number"
                                       : r == range::non_negative ? "a number ≥ 0"
-                                      : r == range::size         ? "a size of at least " + number_text(smallest_size)
+                                      : r == range::size         ? "a size from " + number_text(smallest_size) + " to " +
+                                                                       number_text(mm::largest_footprint_size)
                                                                  : "a number") +
                               unit_text(label);
   if (!f.node.IsScalar()) fail_value(ctx, f, expected);
@@ -150,9 +152,10 @@ double read_number(const context& ctx, const field& f, std::string_view label, r
   }
   if (!std::isfinite(value)) fail_value(ctx, f, "a finite number" + unit_text(label));
   if ((r == range::non_negative && !(value >= 0.0)) || (r == range::positive && !(value > 0.0)) ||
-      (r == range::size && !(value >= smallest_size)) ||
+      (r == range::size && !(value >= smallest_size && value <= mm::largest_footprint_size)) ||
       (r == range::speed && !(value >= 0.0 && value * to_si <= largest_speed)) ||
-      (r == range::positive_speed && !(value > 0.0 && value * to_si <= largest_speed))) {
+      (r == range::positive_speed && !(value > 0.0 && value * to_si <= largest_speed)) ||
+      (r == range::noise && !(value >= 0.0 && value * to_si <= mm::sim::largest_noise_sd))) {
     fail_value(ctx, f, expected);
   }
   return value;

@@ -39,7 +39,7 @@ inline constexpr unit radians{"_rad", 1.0, "rad"};
 /// `size`: the size of a footprint, at least `smallest_size`; `speed`: from 0 to `largest_speed`
 /// (in SI units), `positive_speed` above 0: road users' sizes and speeds
 /// (`mm::sim::smallest_road_user_size`, `largest_road_user_speed`).
-enum class range : std::uint8_t { any, non_negative, positive, size, speed, positive_speed };
+enum class range : std::uint8_t { any, non_negative, positive, size, speed, positive_speed, noise };
 inline constexpr double smallest_size = mm::sim::smallest_road_user_size;  ///< [m]
 inline constexpr double largest_speed = mm::sim::largest_road_user_speed;  ///< [m/s]
 

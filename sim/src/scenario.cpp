@@ -1,11 +1,14 @@
 #include "mm/sim/scenario.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <set>
 #include <string_view>
+#include <utility>
 
 #include "mm/drivable_area.hpp"
+#include "mm/footprint.hpp"
 #include "mm/number_text.hpp"
 #include "mm/planner.hpp"
 
@@ -17,6 +20,7 @@ class checker {
  public:
   std::optional<std::string> error;
   std::string where;
+  double duration = 0.0;  ///< of the run [s]
 
   void fail(const std::string& field, const std::string& message) {
     if (!error) error = where + (where.empty() ? "" : ": ") + field + message;
@@ -39,9 +43,31 @@ class checker {
       fail(prefix + "path", ": the path is empty");
       return;
     }
+    // Every point of a segment lies within its length of its start.
+    for (const path_segment& s : p.segments()) {
+      const double reach = std::max(std::abs(s.start.position.x), std::abs(s.start.position.y)) + s.length;
+      if (!(reach <= largest_path_coordinate)) {
+        fail(prefix + "path", ": a segment from (" + number_text(s.start.position.x) + ", " +
+                                  number_text(s.start.position.y) + ") m of length " + number_text(s.length) +
+                                  " m reaches beyond ±" + number_text(largest_path_coordinate) +
+                                  " m: paths leave as much room again within the ±" +
+                                  number_text(mm::largest_input_coordinate) + " m the planner takes");
+        return;
+      }
+    }
     require(std::isfinite(start_arc_length) && start_arc_length >= 0.0 && start_arc_length < p.length(),
             prefix + "start_arc_length", start_arc_length,
             "an arc length in [0, " + number_text(p.length()) + ") m, the path's length");
+  }
+
+  /// A road user that can move at up to `speed` [m/s] stays, over the whole run, within what the
+  /// planner takes: its path within `largest_path_coordinate`, its travel within as much again.
+  void travel(const std::string& field, double speed) {
+    require(!(speed * duration > mm::largest_input_coordinate - largest_path_coordinate), field, speed,
+            "a speed at which the run's " + number_text(duration) + " s cover at most " +
+                number_text(mm::largest_input_coordinate - largest_path_coordinate) +
+                " m, the room paths leave within the ±" + number_text(mm::largest_input_coordinate) +
+                " m the planner takes");
   }
 
   void profile(const std::string& field, const speed_profile& profile) {
@@ -51,6 +77,9 @@ class checker {
       const std::string at = field + ".knots[" + std::to_string(i) + "]";
       non_negative(at + ".time", knots[i].time, "s");
       non_negative(at + ".speed", knots[i].speed, "m/s");
+      require(!(knots[i].speed > largest_road_user_speed), at + ".speed", knots[i].speed,
+              "at most " + number_text(largest_road_user_speed) + " m/s");
+      travel(at + ".speed", knots[i].speed);
       if (i > 0) {
         require(knots[i].time > knots[i - 1].time, at + ".time", knots[i].time,
                 "a time after the previous knot's " + number_text(knots[i - 1].time) + " s");
@@ -91,6 +120,7 @@ class checker {
   void rectangle(const std::string& prefix, const mm::rectangle& r) {
     positive(prefix + "shape.length", r.length, "m");
     positive(prefix + "shape.width", r.width, "m");
+    if (auto why = mm::footprint_error(r)) fail(prefix + "shape", ": " + *why);
   }
 };
 
@@ -104,6 +134,7 @@ void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_s
   c.non_negative("start_time", v.start_time, "s");
   c.non_negative("initial_speed", v.initial_speed, "m/s");
   c.non_negative("desired_speed", v.desired_speed, "m/s");
+  c.travel("limits.speed_cap", v.limits.speed_cap);
   if (v.desired_speed_profile) c.profile("desired_speed_profile", *v.desired_speed_profile);
   c.rectangle("", v.shape);
   c.positive("follower.lookahead_time", v.follower.lookahead_time, "s");
@@ -160,6 +191,7 @@ mm::convex_polygon static_footprint(const static_obstacle& obstacle) {
 std::optional<std::string> validation_error(const scenario& s) {
   checker c;
   c.where = "scenario";
+  c.duration = s.duration;
   c.positive("duration", s.duration, "s");
   c.positive("time_step", s.time_step, "s");
   c.require(!(s.time_step > s.duration), "time_step", s.time_step,
@@ -168,8 +200,12 @@ std::optional<std::string> validation_error(const scenario& s) {
             "at most 10^7 time steps of " + number_text(s.time_step) + " s (" + number_text(largest_step_count * s.time_step) +
                 " s)");
   c.non_negative("noise.position_sd", s.noise.position_sd, "m");
+  c.require(!(s.noise.position_sd > largest_noise_sd), "noise.position_sd", s.noise.position_sd,
+            "at most " + number_text(largest_noise_sd) + " m");
   c.non_negative("noise.heading_sd", s.noise.heading_sd, "rad");
   c.non_negative("noise.speed_sd", s.noise.speed_sd, "m/s");
+  c.require(!(s.noise.speed_sd > largest_noise_sd), "noise.speed_sd", s.noise.speed_sd,
+            "at most " + number_text(largest_noise_sd) + " m/s");
 
   std::set<std::string> names;
   const auto name = [&](std::string_view list, std::size_t i, const std::string& n) {
@@ -191,14 +227,17 @@ std::optional<std::string> validation_error(const scenario& s) {
     name("pedestrians", i, s.pedestrians[i].name);
     c.motion("motion.", s.pedestrians[i].motion);
     c.positive("radius", s.pedestrians[i].radius, "m");
+    if (auto why = mm::footprint_error(mm::disc{s.pedestrians[i].radius})) c.fail("radius", ": " + *why);
   }
   for (std::size_t i = 0; i < s.static_obstacles.size() && !c.error; ++i) {
     const static_obstacle& o = s.static_obstacles[i];
     name("static_obstacles", i, o.name);
     for (std::size_t k = 0; k < o.vertices.size() && !c.error; ++k) {
       const std::string at = "vertices[" + std::to_string(k) + "]";
-      c.finite(at + ".x", o.vertices[k].x, "m");
-      c.finite(at + ".y", o.vertices[k].y, "m");
+      for (const auto& [axis, value] : {std::pair{".x", o.vertices[k].x}, std::pair{".y", o.vertices[k].y}}) {
+        c.require(std::abs(value) <= mm::largest_input_coordinate, at + axis, value,
+                  "a finite coordinate within ±" + number_text(mm::largest_input_coordinate) + " [m]");
+      }
     }
     if (c.error) break;
     if (auto why = mm::footprint_error(static_footprint(o))) c.fail("vertices", ": " + *why);

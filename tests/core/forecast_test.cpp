@@ -5,6 +5,7 @@
 #include <numbers>
 #include <random>
 
+#include "mm/input_bounds.hpp"
 #include "random_scenes.hpp"
 
 namespace mm {
@@ -98,6 +99,19 @@ TEST(forecast, estimate_is_propagated_to_the_planning_time_and_clamped_to_non_ne
   creeping.kind = obstacle_kind::pedestrian;
   creeping.history = {{0.0, {{0.0, 0.0}, 0.0}, -0.2}, {0.1, {{0.0, 0.0}, 0.0}, -0.21}};
   EXPECT_EQ(estimate_motion(creeping, 0.5, 0.1).speed, 0.0);
+}
+
+TEST(forecast, estimates_from_observations_microseconds_apart_are_clamped_to_what_the_planner_takes) {
+  // Headings turning by 3 rad over 1 µs fit a yaw rate of 3e6 rad/s, and speeds of 0, 1000 and
+  // 1000 m/s a line whose value at the last observation is 1167 m/s: both clamped (input_bounds.hpp).
+  obstacle_track spinning;
+  spinning.kind = obstacle_kind::pedestrian;
+  spinning.history = {{0.0, {{0.0, 0.0}, 0.0}, 0.0}, {5e-7, {{0.0, 0.0}, 1.5}, 1000.0}, {1e-6, {{0.0, 0.0}, 3.0}, 1000.0}};
+  const motion_estimate m = estimate_motion(spinning, 0.5, 1e-6);
+  EXPECT_EQ(m.yaw_rate, largest_input_yaw_rate);
+  EXPECT_EQ(m.speed, largest_input_speed);
+  for (observation& o : spinning.history) o.pose.heading = -o.pose.heading;
+  EXPECT_EQ(estimate_motion(spinning, 0.5, 1e-6).yaw_rate, -largest_input_yaw_rate);
 }
 
 TEST(forecast, static_obstacles_stand_still_whatever_was_observed) {

@@ -1,9 +1,12 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 #include "mm/collision.hpp"
+#include "mm/footprint.hpp"
 #include "mm/planner.hpp"
 #include "random_scenes.hpp"
 
@@ -59,11 +62,67 @@ TEST(validation, non_positive_dimensions_and_limits_are_rejected) {
   expect_rejected([](plan_input& in) { in.ego.limits.max_acceleration = 0.0; }, "ego.limits.max_acceleration",
                   "positive");
   expect_rejected([](plan_input& in) { in.ego.limits.min_turning_radius = nan; }, "ego.limits.min_turning_radius",
-                  "positive");
+                  "finite");
   expect_rejected([](plan_input& in) { in.ego.limits.speed_cap = 0.0; }, "ego.limits.speed_cap", "positive");
-  expect_rejected([](plan_input& in) { in.config.safety_margin = -0.1; }, "config.safety_margin", "≥ 0");
+  expect_rejected([](plan_input& in) { in.config.safety_margin = -0.1; }, "config.safety_margin", "from 0");
   expect_rejected([](plan_input& in) { in.config.resolution.accelerations = 1; }, "config.resolution.accelerations",
                   "from 2");
+}
+
+TEST(validation, magnitudes_beyond_any_road_user_are_rejected_with_the_bound) {
+  // Positive and finite, but so large (or a turning radius so small) that squares and products of
+  // them overflow: found by the planner's fuzzer (a turning radius of 5e-324 m gave NaN indices).
+  expect_rejected([](plan_input& in) { in.ego.limits.min_turning_radius = 5e-324; }, "ego.limits.min_turning_radius",
+                  "at least 0.001");
+  expect_rejected([](plan_input& in) { in.ego.limits.speed_cap = 1e6; }, "ego.limits.speed_cap", "up to 1000");
+  expect_rejected([](plan_input& in) { in.ego.limits.max_acceleration = 1e300; }, "ego.limits.max_acceleration",
+                  "up to 1000");
+  expect_rejected([](plan_input& in) { in.ego.limits.max_lateral_acceleration = 2e3; },
+                  "ego.limits.max_lateral_acceleration", "up to 1000");
+  expect_rejected([](plan_input& in) { in.ego.pose.position.y = -2e7; }, "ego.pose.position.y", "within ±1e+07 m");
+  expect_rejected([](plan_input& in) { in.ego.shape = rectangle{1e301, 1.8}; }, "ego.shape",
+                  "rectangle length must be a positive number of metres up to 1000, got 1e+301");
+  expect_rejected([](plan_input& in) { in.obstacles[0].shape = convex_polygon{{{0.0, 0.0}, {2e3, 0.0}, {0.0, 1.0}}}; },
+                  "obstacles[0] (id 5).shape", "more than 1000 m from the reference point");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[2].pose.position.x = 1e8; },
+                  "obstacles[0] (id 5).history[2].pose.position.x", "within ±1e+07 m");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[3].speed = -1e20; },
+                  "obstacles[0] (id 5).history[3].speed", "within ±1000 m/s");
+  expect_rejected(
+      [](plan_input& in) { in.obstacles[0].motion = motion_estimate{in.obstacles[0].history.back().pose, 5e3, 0.0}; },
+      "obstacles[0] (id 5).motion.speed", "within ±1000 m/s");
+  expect_rejected([](plan_input& in) { in.config.safety_margin = 1e4; }, "config.safety_margin", "from 0 to 1000");
+  expect_rejected(
+      [](plan_input& in) { in.obstacles[0].motion = motion_estimate{in.obstacles[0].history.back().pose, 5.0, 1e308}; },
+      "obstacles[0] (id 5).motion.yaw_rate", "within ±100 rad/s");
+  expect_rejected([](plan_input& in) { in.time = 1e300; }, "obstacles[0] (id 5).history.back().time",
+                  "no more than 1000 s before the planning time 1e+300 s");
+}
+
+TEST(validation, inputs_at_the_bounds_are_planned_to_finite_results) {
+  // The largest and smallest accepted magnitudes together are planned, every result finite.
+  plan_input in = valid_input();
+  in.ego.pose.position = {largest_input_coordinate - 5e3, -largest_input_coordinate + 5e3};  // the obstacle's track within the bound
+  in.ego.limits = {largest_input_acceleration, largest_input_acceleration, largest_input_acceleration,
+                   smallest_input_turning_radius, largest_input_speed, true};
+  in.ego.shape = rectangle{largest_footprint_size, largest_footprint_size};
+  in.config.safety_margin = largest_input_safety_margin;
+  in.config.resolution = {3, 3};
+  in.obstacles[0].history = testing::ctrv_history({in.ego.pose.position + vec2{-2e3, 0.0}, 0.3}, 900.0, 0.1, in.time);
+  in.obstacles[0].shape = disc{largest_footprint_size};
+  for (const double speed : {0.0, 1e-300, 5.0, largest_input_speed}) {
+    in.ego.speed = speed;
+    const plan_result r = plan(in);
+    EXPECT_EQ(validation_error(in), std::nullopt) << speed;
+    ASSERT_TRUE(r.ok()) << speed << ": " << r.error;
+    EXPECT_TRUE(std::isfinite(r.command.acceleration) && std::isfinite(r.command.curvature)) << speed;
+    EXPECT_TRUE(r.mi_brake_selected >= 0.0 && r.mi_brake_selected <= 1.0) << speed;
+    EXPECT_TRUE(r.mi_accelerate_selected >= 0.0 && r.mi_accelerate_selected <= 1.0) << speed;
+    for (std::size_t i = 0; i < r.mi_brake.size(); ++i) {
+      EXPECT_TRUE(r.mi_brake[i] >= 0.0 && r.mi_brake[i] <= 1.0) << speed << " " << i;
+      EXPECT_TRUE(r.mi_accelerate[i] >= 0.0 && r.mi_accelerate[i] <= 1.0) << speed << " " << i;
+    }
+  }
 }
 
 TEST(validation, an_empty_forecast_grid_or_one_beyond_the_collision_window_is_rejected) {

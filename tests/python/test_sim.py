@@ -452,7 +452,7 @@ def test_a_scenario_built_in_python_is_written_as_a_file_that_loads_and_runs_as_
 def test_a_scenario_no_file_can_state_is_refused_and_agent_lists_compare_and_search_by_value():
     built = s1_crossing_built_in_python()
     built.scripted_vehicles[0].shape = mm.rectangle(4.5, 0.01)  # the simulator takes it, a file does not
-    with pytest.raises(ValueError, match="footprint.width_m = 0.01: expected a size of at least 0.05"):
+    with pytest.raises(ValueError, match="footprint.width_m = 0.01: expected a size from 0.05 to 1000"):
         mm.sim.scenario_text(built)
     with pytest.raises(ValueError, match="footprint.width_m = 0.01"):
         pickle.dumps(built)

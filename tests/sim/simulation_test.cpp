@@ -439,6 +439,52 @@ TEST(simulation, scenario_validation_names_the_agent_and_the_field) {
   EXPECT_EQ(validation_error(bad_step).value(), "scenario: time_step = 0: expected a positive finite number [s]");
 }
 
+TEST(simulation, scenario_validation_keeps_every_road_user_within_what_the_planner_takes) {
+  // Sizes, speeds, places and noise the planner would refuse at some step (mm::validation_error's
+  // bounds) are refused before the run, naming the agent and the field.
+  const scenario s = crossing(true);
+  const auto error_of = [](const scenario& bad) { return validation_error(bad).value_or("(valid)"); };
+
+  scenario huge = s;
+  huge.scripted_vehicles[0].shape = mm::rectangle{4.5, 2e3};
+  EXPECT_EQ(error_of(huge), "scripted_vehicles[0] \"B\": shape: rectangle width must be a positive number of metres "
+                            "up to 1000, got 2000");
+  scenario giant = s;
+  giant.pedestrians.push_back({"P", scripted("P", straight_path({0.0, 5.0}, 0.0, 10.0), 1.0).motion, 5e3});
+  EXPECT_EQ(error_of(giant), "pedestrians[0] \"P\": radius: disc radius must be a positive number of metres up to "
+                             "1000, got 5000");
+
+  scenario far = s;
+  far.scripted_vehicles[0].motion.path = straight_path({4e6, 0.0}, 0.0, 2e6);
+  EXPECT_EQ(error_of(far), "scripted_vehicles[0] \"B\": motion.path: a segment from (4e+06, 0) m of length 2e+06 m "
+                           "reaches beyond ±5e+06 m: paths leave as much room again within the ±1e+07 m the planner "
+                           "takes");
+
+  scenario fast = s;
+  fast.scripted_vehicles[0].motion.speed = speed_profile::constant(150.0);
+  EXPECT_EQ(error_of(fast), "scripted_vehicles[0] \"B\": motion.speed.knots[0].speed = 150: expected at most 100 m/s");
+
+  scenario long_drive = s;
+  long_drive.duration = 1e5;
+  long_drive.planning_vehicles[0].limits.speed_cap = 60.0;  // 6e6 m in the run
+  EXPECT_EQ(error_of(long_drive), "planning_vehicles[0] \"A\": limits.speed_cap = 60: expected a speed at which the "
+                                  "run's 1e+05 s cover at most 5e+06 m, the room paths leave within the ±1e+07 m the "
+                                  "planner takes");
+  long_drive.planning_vehicles[0].limits.speed_cap = 50.0;  // exactly 5e6 m
+  EXPECT_EQ(error_of(long_drive), "(valid)");
+
+  scenario noisy = s;
+  noisy.noise.speed_sd = 11.0;
+  EXPECT_EQ(error_of(noisy), "scenario: noise.speed_sd = 11: expected at most 10 m/s");
+  noisy.noise = {10.0, 1.0, 10.0};
+  EXPECT_EQ(error_of(noisy), "(valid)");
+
+  scenario remote = s;
+  remote.static_obstacles.push_back({"L", {{2e7, 0.0}, {2e7 + 2.0, 0.0}, {2e7, 2.0}}});
+  EXPECT_EQ(error_of(remote), "static_obstacles[0] \"L\": vertices[0].x = 2e+07: expected a finite coordinate "
+                              "within ±1e+07 [m]");
+}
+
 }  // namespace
 
 namespace mm::sim {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mm/geometry.hpp"
+#include "mm/input_bounds.hpp"
 
 namespace mm {
 
@@ -107,8 +108,9 @@ double bounding_radius(const footprint& shape);
 /// Bounds the collision time step so footprints cannot pass through each other (spec §5).
 double smallest_dimension(const footprint& shape);
 
-/// Why `shape` is not a valid footprint (non-finite or non-positive sizes, a polygon that is not
-/// convex or has fewer than 3 or more than `max_polygon_vertices` vertices), or nothing.
+/// Why `shape` is not a valid footprint (sizes that are not positive and finite or exceed
+/// `largest_footprint_size` of `input_bounds.hpp`, a polygon that is not convex or has fewer than 3 or more than
+/// `max_polygon_vertices` vertices), or nothing.
 std::optional<std::string> footprint_error(const footprint& shape);
 
 /// True when the footprints overlap after inflating `b` by `margin` ≥ 0 [m] (spec §2): the

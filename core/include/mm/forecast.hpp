@@ -47,9 +47,10 @@ struct obstacle_track {
 
 /// Least-squares estimate of speed v_j and yaw rate ω_j from the observations in the window
 /// [t_last − history_window, t_last] (at least the last two) (spec §4):
-/// - ω_j is the slope of the line fitted to the unwrapped headings; the heading is that line's
-///   value at t_last;
-/// - v_j is the value at t_last of the line fitted to the observed speeds, clamped to ≥ 0;
+/// - ω_j is the slope of the line fitted to the unwrapped headings, clamped to
+///   ±`largest_input_yaw_rate`; the heading is that line's value at t_last;
+/// - v_j is the value at t_last of the line fitted to the observed speeds, clamped to
+///   [0, `largest_input_speed`];
 /// - the position is the last observed one;
 /// and then propagated by CTRV from t_last to `now` (≥ t_last). Static obstacles: the last pose,
 /// speed and yaw rate 0.

@@ -9,6 +9,7 @@
 
 #include "mm/drivable_area.hpp"
 #include "mm/forecast.hpp"
+#include "mm/input_bounds.hpp"
 #include "mm/maneuver.hpp"
 #include "mm/maneuver_choice.hpp"
 #include "mm/planner_config.hpp"
@@ -97,7 +98,9 @@ struct plan_result {
   bool ok() const { return status == plan_status::ok; }
 };
 
-/// Why `input` cannot be planned on — the field, its value and what was expected — or nothing.
+/// Why `input` cannot be planned on — the field, its value and what was expected — or nothing:
+/// values that are not finite, out of order or out of range, and magnitudes beyond
+/// `input_bounds.hpp`'s.
 std::optional<std::string> validation_error(const plan_input& input);
 
 /// One planning step with Maneuverability Maps (spec §3–§9): the fast path.

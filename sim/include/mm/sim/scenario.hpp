@@ -22,6 +22,13 @@ namespace mm::sim {
 /// `mm::smallest_collision_time_step`: 0.05 m over 200 m/s is 0.25 ms.
 inline constexpr double smallest_road_user_size = 0.05;   ///< [m], a footprint's smallest dimension
 inline constexpr double largest_road_user_speed = 100.0;  ///< [m/s]
+/// The largest coordinate a path may reach [m]: half of what the planner takes
+/// (`mm::largest_input_coordinate`), so that road users may drive on beyond their paths' ends.
+inline constexpr double largest_path_coordinate = 5e6;
+/// The largest standard deviation of the sensing noise, of positions [m] and of speeds [m/s]: no
+/// draw of it (Box–Muller on 53-bit uniforms, within 8.6 σ) takes an observation out of what the
+/// planner takes (`mm::largest_input_speed`, `mm::largest_input_coordinate`).
+inline constexpr double largest_noise_sd = 10.0;
 /// The most time steps a run may take (duration / time_step): 10⁷, almost 28 hours at 100 Hz. A
 /// longer run is refused rather than simulated for days, or its step count overflowed.
 inline constexpr double largest_step_count = 1e7;
