@@ -112,16 +112,19 @@ bool ego_sweep::try_restart(const ego_state& ego, const collision_window& window
       samples_.size() != sample_count_) {
     return false;
   }
+  // The tree's shape does not depend on the speed (`add_block` splits by the shape accelerations)
+  // as long as the grids keep their rows and columns: another resolution of as many samples (4 × 5
+  // and 6 × 3 per family, with their nominal-curvature columns) needs a new tree, at any speed.
+  std::vector<grid_view> grids = grids_of(samples_);
+  if (!same_shape(grids, grids_)) return false;
   if (ego.speed == ego_.speed) {
+    // The same speed, limits, horizon and grids: the same samples, whose placements are kept.
     start(ego, window, start_kind::same_speed);
     return true;
   }
-  // Sampled again at a new speed: the tree's shape does not depend on the speed (`add_block` splits
-  // by the shape accelerations) as long as the grids keep their rows and columns. The blocks'
-  // curvature extents are taken anew, and where the rows' accelerations moved too (a slow ego's
-  // rows follow the arc length, `available_displacements`), all their extents.
-  std::vector<grid_view> grids = grids_of(samples_);
-  if (!same_shape(grids, grids_)) return false;
+  // Sampled again at a new speed: the blocks' curvature extents are taken anew, and where the
+  // rows' accelerations moved too (a slow ego's rows follow the arc length,
+  // `available_displacements`), all their extents.
   bool rows_moved = false;
   for (std::size_t g = 0; g < grids.size(); ++g) rows_moved = rows_moved || grids[g].accelerations != grids_[g].accelerations;
   grids_ = std::move(grids);

@@ -41,11 +41,12 @@ struct checker {
   void non_negative(Field&& field, double value, const char* unit) {
     require(std::isfinite(value) && value >= 0.0, field, value, [&] { return std::string("a finite number ≥ 0 of ") + unit; });
   }
-  /// A positive finite number up to `largest`.
+  /// A positive finite number up to `largest`; `note` follows the expectation.
   template <class Field>
-  void positive_up_to(Field&& field, double value, double largest, const char* unit) {
-    require(std::isfinite(value) && value > 0.0 && value <= largest, field, value,
-            [&] { return "a positive number of " + std::string(unit) + " up to " + number_text(largest); });
+  void positive_up_to(Field&& field, double value, double largest, const char* unit, const char* note = "") {
+    require(std::isfinite(value) && value > 0.0 && value <= largest, field, value, [&] {
+      return "a positive number of " + std::string(unit) + " up to " + number_text(largest) + note;
+    });
   }
   template <class Field>
   void coordinate(Field&& field, double value) {
@@ -91,8 +92,8 @@ std::optional<std::string> validation_error(const plan_input& in) {
 
   const ego_limits& l = in.ego.limits;
   c.positive_up_to("ego.limits.max_acceleration", l.max_acceleration, largest_input_acceleration, "m/s²");
-  c.positive_up_to("ego.limits.max_deceleration", l.max_deceleration, largest_input_acceleration,
-                   "m/s² (deceleration is given as a positive number)");
+  c.positive_up_to("ego.limits.max_deceleration", l.max_deceleration, largest_input_acceleration, "m/s²",
+                   " (deceleration is given as a positive number)");
   c.positive_up_to("ego.limits.max_lateral_acceleration", l.max_lateral_acceleration, largest_input_acceleration, "m/s²");
   c.require(std::isfinite(l.min_turning_radius) && l.min_turning_radius >= smallest_input_turning_radius,
             "ego.limits.min_turning_radius", l.min_turning_radius,

@@ -50,7 +50,7 @@ class checker {
         fail(prefix + "path", ": a segment from (" + number_text(s.start.position.x) + ", " +
                                   number_text(s.start.position.y) + ") m of length " + number_text(s.length) +
                                   " m reaches beyond ±" + number_text(largest_path_coordinate) +
-                                  " m: paths leave as much room again within the ±" +
+                                  " m: road users must stay within the ±" +
                                   number_text(mm::largest_input_coordinate) + " m the planner takes");
         return;
       }
@@ -60,13 +60,11 @@ class checker {
             "an arc length in [0, " + number_text(p.length()) + ") m, the path's length");
   }
 
-  /// A road user that can move at up to `speed` [m/s] stays, over the whole run, within what the
-  /// planner takes: its path within `largest_path_coordinate`, its travel within as much again.
+  /// A road user that can move at up to `speed` [m/s] travels at most `largest_travel` in the run.
   void travel(const std::string& field, double speed) {
-    require(!(speed * duration > mm::largest_input_coordinate - largest_path_coordinate), field, speed,
-            "a speed at which the run's " + number_text(duration) + " s cover at most " +
-                number_text(mm::largest_input_coordinate - largest_path_coordinate) +
-                " m, the room paths leave within the ±" + number_text(mm::largest_input_coordinate) +
+    require(!(speed * duration > largest_travel), field, speed,
+            "a speed at which the run's " + number_text(duration) + " s cover at most " + number_text(largest_travel) +
+                " m, so that road users stay within the ±" + number_text(mm::largest_input_coordinate) +
                 " m the planner takes");
   }
 
@@ -130,7 +128,8 @@ std::string agent_label(std::string_view list, std::size_t index, const std::str
 
 void check_planning_vehicle(checker& c, const planning_vehicle& v, double time_step) {
   c.path_start("", v.path, v.start_arc_length);
-  c.finite("start_lateral_offset", v.start_lateral_offset, "m");
+  c.require(std::abs(v.start_lateral_offset) <= largest_lateral_offset, "start_lateral_offset", v.start_lateral_offset,
+            "a finite offset within ±" + number_text(largest_lateral_offset) + " [m]");
   c.non_negative("start_time", v.start_time, "s");
   c.non_negative("initial_speed", v.initial_speed, "m/s");
   c.non_negative("desired_speed", v.desired_speed, "m/s");

@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <numbers>
+#include <random>
 
 #include "mm/collision.hpp"
 #include "mm/reference_planner.hpp"
@@ -364,6 +365,29 @@ TEST(planner, an_input_that_needs_a_time_step_below_the_floor_is_refused_and_one
   const plan_result planned = plan(small);
   ASSERT_TRUE(planned.ok()) << planned.error;
   EXPECT_GE(planned.collision_time_step, smallest_collision_time_step);
+}
+
+TEST(planner, a_kept_planner_plans_another_grid_of_as_many_samples_as_plan_does) {
+  // 4 × 5 and 6 × 3 accelerations × curvatures both make 24 samples per family with the
+  // nominal-curvature column: at the same speed a kept planner once took the second grid for the
+  // first and kept its placements (found by the planner's fuzzer, 2026-12-07).
+  std::mt19937_64 rng(5);
+  std::size_t differ = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    plan_input in = testing::random_scene(rng, {1 + static_cast<std::size_t>(trial % 3), trial % 2 == 1});
+    planner kept;
+    in.config.resolution = trial % 2 == 0 ? sampling_resolution{4, 5} : sampling_resolution{6, 3};
+    const plan_result first = kept.plan(in);
+    in.config.resolution = trial % 2 == 0 ? sampling_resolution{6, 3} : sampling_resolution{4, 5};
+    const plan_result fresh = plan(in);
+    const plan_result again = kept.plan(in);
+    ASSERT_TRUE(fresh.ok() && again.ok()) << fresh.error;
+    EXPECT_EQ(again.command, fresh.command) << "trial " << trial;
+    EXPECT_EQ(again.mi_brake, fresh.mi_brake) << "trial " << trial;
+    EXPECT_EQ(again.mi_accelerate, fresh.mi_accelerate) << "trial " << trial;
+    differ += first.mi_brake != fresh.mi_brake || first.mi_accelerate != fresh.mi_accelerate ? 1 : 0;
+  }
+  EXPECT_GT(differ, 5U) << "the two grids must give other maps often for this test to mean anything";
 }
 
 TEST(planner, a_command_outside_the_limits_is_clamped) {

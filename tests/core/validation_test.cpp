@@ -79,13 +79,13 @@ TEST(validation, magnitudes_beyond_any_road_user_are_rejected_with_the_bound) {
                   "up to 1000");
   expect_rejected([](plan_input& in) { in.ego.limits.max_lateral_acceleration = 2e3; },
                   "ego.limits.max_lateral_acceleration", "up to 1000");
-  expect_rejected([](plan_input& in) { in.ego.pose.position.y = -2e7; }, "ego.pose.position.y", "within ±1e+07 m");
+  expect_rejected([](plan_input& in) { in.ego.pose.position.y = -2e8; }, "ego.pose.position.y", "within ±1e+08 m");
   expect_rejected([](plan_input& in) { in.ego.shape = rectangle{1e301, 1.8}; }, "ego.shape",
                   "rectangle length must be a positive number of metres up to 1000, got 1e+301");
   expect_rejected([](plan_input& in) { in.obstacles[0].shape = convex_polygon{{{0.0, 0.0}, {2e3, 0.0}, {0.0, 1.0}}}; },
                   "obstacles[0] (id 5).shape", "more than 1000 m from the reference point");
-  expect_rejected([](plan_input& in) { in.obstacles[0].history[2].pose.position.x = 1e8; },
-                  "obstacles[0] (id 5).history[2].pose.position.x", "within ±1e+07 m");
+  expect_rejected([](plan_input& in) { in.obstacles[0].history[2].pose.position.x = 2e8; },
+                  "obstacles[0] (id 5).history[2].pose.position.x", "within ±1e+08 m");
   expect_rejected([](plan_input& in) { in.obstacles[0].history[3].speed = -1e20; },
                   "obstacles[0] (id 5).history[3].speed", "within ±1000 m/s");
   expect_rejected(

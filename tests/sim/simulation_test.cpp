@@ -455,10 +455,14 @@ TEST(simulation, scenario_validation_keeps_every_road_user_within_what_the_plann
                              "1000, got 5000");
 
   scenario far = s;
-  far.scripted_vehicles[0].motion.path = straight_path({4e6, 0.0}, 0.0, 2e6);
-  EXPECT_EQ(error_of(far), "scripted_vehicles[0] \"B\": motion.path: a segment from (4e+06, 0) m of length 2e+06 m "
-                           "reaches beyond ±5e+06 m: paths leave as much room again within the ±1e+07 m the planner "
-                           "takes");
+  far.scripted_vehicles[0].motion.path = straight_path({3e7, 0.0}, 0.0, 2e7);
+  EXPECT_EQ(error_of(far), "scripted_vehicles[0] \"B\": motion.path: a segment from (3e+07, 0) m of length 2e+07 m "
+                           "reaches beyond ±4e+07 m: road users must stay within the ±1e+08 m the planner takes");
+
+  scenario aside = s;
+  aside.planning_vehicles[0].start_lateral_offset = 2e3;
+  EXPECT_EQ(error_of(aside), "planning_vehicles[0] \"A\": start_lateral_offset = 2000: expected a finite offset within "
+                             "±1000 [m]");
 
   scenario fast = s;
   fast.scripted_vehicles[0].motion.speed = speed_profile::constant(150.0);
@@ -466,11 +470,11 @@ TEST(simulation, scenario_validation_keeps_every_road_user_within_what_the_plann
 
   scenario long_drive = s;
   long_drive.duration = 1e5;
-  long_drive.planning_vehicles[0].limits.speed_cap = 60.0;  // 6e6 m in the run
-  EXPECT_EQ(error_of(long_drive), "planning_vehicles[0] \"A\": limits.speed_cap = 60: expected a speed at which the "
-                                  "run's 1e+05 s cover at most 5e+06 m, the room paths leave within the ±1e+07 m the "
+  long_drive.planning_vehicles[0].limits.speed_cap = 600.0;  // 6e7 m in the run
+  EXPECT_EQ(error_of(long_drive), "planning_vehicles[0] \"A\": limits.speed_cap = 600: expected a speed at which the "
+                                  "run's 1e+05 s cover at most 5e+07 m, so that road users stay within the ±1e+08 m the "
                                   "planner takes");
-  long_drive.planning_vehicles[0].limits.speed_cap = 50.0;  // exactly 5e6 m
+  long_drive.planning_vehicles[0].limits.speed_cap = 500.0;  // exactly 5e7 m
   EXPECT_EQ(error_of(long_drive), "(valid)");
 
   scenario noisy = s;
@@ -480,9 +484,9 @@ TEST(simulation, scenario_validation_keeps_every_road_user_within_what_the_plann
   EXPECT_EQ(error_of(noisy), "(valid)");
 
   scenario remote = s;
-  remote.static_obstacles.push_back({"L", {{2e7, 0.0}, {2e7 + 2.0, 0.0}, {2e7, 2.0}}});
-  EXPECT_EQ(error_of(remote), "static_obstacles[0] \"L\": vertices[0].x = 2e+07: expected a finite coordinate "
-                              "within ±1e+07 [m]");
+  remote.static_obstacles.push_back({"L", {{2e8, 0.0}, {2e8 + 2.0, 0.0}, {2e8, 2.0}}});
+  EXPECT_EQ(error_of(remote), "static_obstacles[0] \"L\": vertices[0].x = 2e+08: expected a finite coordinate "
+                              "within ±1e+08 [m]");
 }
 
 }  // namespace

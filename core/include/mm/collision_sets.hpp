@@ -70,7 +70,9 @@ class ego_sweep {
   /// blocks' extents are taken anew). Throws std::invalid_argument when what must be unchanged
   /// changed.
   void restart(const ego_state& ego, const collision_window& window);
-  /// `restart(ego, window)` where it is possible, and true; else false, and the sweep is unchanged.
+  /// `restart(ego, window)` where it is possible, and true; else false, and the sweep is unchanged:
+  /// where the limits, footprint radius or horizon changed, or the samples were taken at another
+  /// resolution (told by the grids' rows and columns, even where the sample count is the same).
   bool try_restart(const ego_state& ego, const collision_window& window);
 
   const ego_state& ego() const { return ego_; }

@@ -7,7 +7,7 @@ namespace mm {
 /// input it accepts can make a NaN (docs/method.md §5, deviations). Found by fuzzing the planner
 /// (`fuzz/planner_fuzzer.cpp`): a turning radius of 5e-324 m, a yaw rate of 1e308 rad/s or a
 /// footprint 1e301 m long each made NaN indices, or undefined behaviour, before these bounds.
-inline constexpr double largest_input_coordinate = 1e7;        ///< |x|, |y| of a position [m]
+inline constexpr double largest_input_coordinate = 1e8;        ///< |x|, |y| of a position [m]
 inline constexpr double largest_input_speed = 1e3;             ///< a speed cap, an observed or given speed [m/s]
 inline constexpr double largest_input_yaw_rate = 1e2;          ///< a given yaw rate; estimates are clamped to it [rad/s]
 inline constexpr double largest_input_acceleration = 1e3;      ///< a_max, d_max, a_lat_max [m/s²]

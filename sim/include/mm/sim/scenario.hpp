@@ -22,9 +22,13 @@ namespace mm::sim {
 /// `mm::smallest_collision_time_step`: 0.05 m over 200 m/s is 0.25 ms.
 inline constexpr double smallest_road_user_size = 0.05;   ///< [m], a footprint's smallest dimension
 inline constexpr double largest_road_user_speed = 100.0;  ///< [m/s]
-/// The largest coordinate a path may reach [m]: half of what the planner takes
-/// (`mm::largest_input_coordinate`), so that road users may drive on beyond their paths' ends.
-inline constexpr double largest_path_coordinate = 5e6;
+/// Where road users may be, so that every observation of a valid scenario stays within what the
+/// planner takes (±`mm::largest_input_coordinate`, 10⁸ m) for the whole run: paths within ±4·10⁷ m,
+/// at most 5·10⁷ m of travel in the run (speed × duration), lateral start offsets of at most
+/// 1000 m; the remaining 10⁷ m hold the sensing noise with room to spare.
+inline constexpr double largest_path_coordinate = 4e7;  ///< |x|, |y| of every point of a path [m]
+inline constexpr double largest_travel = 5e7;           ///< a road user's top speed × the duration [m]
+inline constexpr double largest_lateral_offset = 1e3;   ///< |start_lateral_offset| [m]
 /// The largest standard deviation of the sensing noise, of positions [m] and of speeds [m/s]: no
 /// draw of it (Box–Muller on 53-bit uniforms, within 8.6 σ) takes an observation out of what the
 /// planner takes (`mm::largest_input_speed`, `mm::largest_input_coordinate`).
