@@ -4,8 +4,10 @@
 // mostly within the ranges the planner takes, sometimes at their ends, 0, NaN, ±inf or an arbitrary
 // double. Whatever the input, the planner must refuse it with a status and a message, or plan it
 // with a finite command within the ego's limits, every index in [0, 1], the map column's sizes as
-// configured and a TTC that is not NaN; and a kept mm::planner, shared by every input, must give
-// the same result bit for bit (its cache must never leak one input into another's result).
+// configured and a TTC that is not NaN. Each input is planned for up to four steps (the same scene
+// later, sometimes at another speed, footprint or resolution, or another scene) by one kept
+// mm::planner, which must give mm::plan's result bit for bit: its cache must never carry one step
+// into another's result.
 // A crash, a hang, an exception, a leak or undefined behaviour is a bug.
 // Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
 #include <fuzzer/FuzzedDataProvider.h>
@@ -143,8 +145,9 @@ class decoder {
     return in;
   }
 
- /// The next planning step of `in`'s scene: later, the ego moved, its speed and nominal maneuver
-  /// changed (or not), every obstacle observed once more.
+  /// The next planning step of `in`'s scene: later, the ego moved, its speed and nominal maneuver
+  /// changed (or not), sometimes its footprint or the sampling resolution, every obstacle observed
+  /// once more.
   void next_step(mm::plan_input& in) {
     const double dt = number(0.0, 0.1);
     in.time += dt;
@@ -153,6 +156,7 @@ class decoder {
     if (flag()) in.ego.speed = flag() ? in.ego.speed + number(-0.5, 0.5) : number(0.0, 35.0);
     if (flag()) in.nominal = {number(-12.0, 8.0), number(-0.5, 0.5)};
     if (flag()) in.ego.shape = shape();
+    if (flag()) in.config.resolution = {count(1, 9), count(0, 11)};
     for (mm::obstacle_track& t : in.obstacles) {
       mm::observation last = t.history.back();
       last.time = in.time;
