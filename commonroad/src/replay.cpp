@@ -121,8 +121,8 @@ sim::scenario replay_scenario(const scenario& s, const replay_options& options) 
   }
   out.duration = std::max(step_time(s, last_step), out.time_step);
   if (!(out.duration / out.time_step <= sim::largest_step_count)) {
-    throw measure_error("the recording lasts " + number_text(out.duration, 6) + " s (timeStepSize " + number_text(s.time_step, 6) +
-                        " s): expected at most 10^7 simulation steps of 0.01 s (" +
+    throw measure_error("the recording lasts " + number_text(out.duration, 6) + " s (timeStepSize " +
+                        number_text(s.time_step, 6) + " s): expected at most 10^7 simulation steps of 0.01 s (" +
                         number_text(sim::largest_step_count * out.time_step, 6) + " s) to replay");
   }
 
