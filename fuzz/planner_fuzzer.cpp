@@ -234,9 +234,9 @@ void check(const mm::plan_input& in, mm::planner& kept) {
               same_bits(again.command.curvature, r.command.curvature) && again.mode == r.mode &&
               again.forecast_index == r.forecast_index && same_bits(again.mi_brake_selected, r.mi_brake_selected) &&
               same_bits(again.mi_accelerate_selected, r.mi_accelerate_selected) &&
-              again.mi_brake.size() == r.mi_brake.size() &&
-              std::equal(again.mi_brake.begin(), again.mi_brake.end(), r.mi_brake.begin(), same_bits) &&
-              std::equal(again.mi_accelerate.begin(), again.mi_accelerate.end(), r.mi_accelerate.begin(), same_bits),
+              std::equal(again.mi_brake.begin(), again.mi_brake.end(), r.mi_brake.begin(), r.mi_brake.end(), same_bits) &&
+              std::equal(again.mi_accelerate.begin(), again.mi_accelerate.end(), r.mi_accelerate.begin(),
+                         r.mi_accelerate.end(), same_bits),
           "a kept planner's result differs", in, r);
   // The command: finite and within the limits (spec §8.4).
   const mm::ego_limits& limits = in.ego.limits;

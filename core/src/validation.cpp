@@ -71,15 +71,16 @@ struct checker {
   }
 };
 
-/// True when every observation of `history` is finite and later than the one before: what the
-/// observation checks of `validation_error` accept, in one pass that builds no message.
+/// True when every observation of `history` is finite, within the input bounds and later than the
+/// one before: what the observation checks of `validation_error` accept, in one pass that builds no
+/// message.
 bool history_valid(std::span<const observation> history) {
   for (std::size_t i = 0; i < history.size(); ++i) {
     const observation& o = history[i];
-    const bool finite = std::isfinite(o.time) && std::abs(o.pose.position.x) <= largest_input_coordinate &&
-                        std::abs(o.pose.position.y) <= largest_input_coordinate && std::isfinite(o.pose.heading) &&
-                        std::abs(o.speed) <= largest_input_speed;
-    if (!finite || (i > 0 && !(o.time > history[i - 1].time))) return false;
+    const bool in_range = std::isfinite(o.time) && std::abs(o.pose.position.x) <= largest_input_coordinate &&
+                          std::abs(o.pose.position.y) <= largest_input_coordinate && std::isfinite(o.pose.heading) &&
+                          std::abs(o.speed) <= largest_input_speed;
+    if (!in_range || (i > 0 && !(o.time > history[i - 1].time))) return false;
   }
   return true;
 }

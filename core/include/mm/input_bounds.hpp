@@ -4,9 +4,9 @@ namespace mm {
 
 /// The magnitudes a planning input may have besides being finite (`validation_error`), far beyond
 /// any road user's: within them every square, product and sum the planner forms stays finite, so no
-/// input it accepts can make a NaN (docs/method.md §5, deviations). Found by fuzzing the planner
-/// (`fuzz/planner_fuzzer.cpp`): a turning radius of 5e-324 m, a yaw rate of 1e308 rad/s or a
-/// footprint 1e301 m long each made NaN indices, or undefined behaviour, before these bounds.
+/// input it accepts can make a NaN (docs/method.md §5, item 18). Found by fuzzing the planner
+/// (`fuzz/planner_fuzzer.cpp`): a turning radius of 5e-324 m made NaN indices, and a given yaw rate
+/// of 1e308 rad/s undefined behaviour; the other bounds keep the same squares and products finite.
 inline constexpr double largest_input_coordinate = 1e8;        ///< |x|, |y| of a position [m]
 inline constexpr double largest_input_speed = 1e3;             ///< a speed cap, an observed or given speed [m/s]
 inline constexpr double largest_input_yaw_rate = 1e2;          ///< a given yaw rate; estimates are clamped to it [rad/s]
