@@ -4,8 +4,11 @@
 #include <cctype>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "mm/cli/commands.hpp"
+#include "mm/sim/roundabout.hpp"
 
 namespace mm::cli {
 
@@ -85,6 +88,17 @@ mm::commonroad::scenario commonroad_recording::scenario() const {
       if (!(length > 0.0)) continue;
       const vec2 left{-(b.y - a.y) / length * half, (b.x - a.x) / length * half};
       s.lanelets.push_back({next_id++, {a + left, b + left}, {a - left, b - left}});
+    }
+  }
+  if (loaded_->roundabout) {
+    const mm::sim::roundabout& ring = loaded_->roundabout->ring;
+    std::vector<mm::sim::roundabout_arm> arms;
+    for (const scenario_file::named_arm& each : loaded_->roundabout->arms) arms.push_back(each.arm);
+    const double widest = mm::sim::widest_lane(ring);
+    double width = loaded_->roundabout->lane_width.value_or(scenario_file::default_roundabout_lane_width);
+    if (!(width < widest)) width = 0.5 * widest;
+    for (mm::sim::lane_edges& lane : mm::sim::roundabout_lane_edges(ring, arms, width)) {
+      s.lanelets.push_back({next_id++, std::move(lane.left), std::move(lane.right)});
     }
   }
   for (const mm::commonroad::obstacle& o : obstacles_) {

@@ -331,11 +331,12 @@ class mapper {
     for (const road& each : result_.roads) add_to_drivable_area(road_polygons(each));
     if (result_.roundabout) {
       const mm::sim::roundabout& ring = result_.roundabout->ring;
-      if (!(default_lane_width < mm::sim::widest_lane(ring))) {
+      if (!(default_roundabout_lane_width < mm::sim::widest_lane(ring))) {
         refuse("the roundabout's 3.5 m lanes need radius_m and connection_radius_m above 1.75 m; give the drivable "
                "area in the file (drivable_area: {roundabout: {lane_width_m: W}})");
       }
-      add_to_drivable_area(mm::sim::roundabout_lanes(ring, arms_of(*result_.roundabout), default_lane_width));
+      add_to_drivable_area(mm::sim::roundabout_lanes(ring, arms_of(*result_.roundabout), default_roundabout_lane_width));
+      result_.roundabout->lane_width = default_roundabout_lane_width;
     }
   }
 
@@ -345,19 +346,16 @@ class mapper {
     return arms;
   }
 
-  /// A roundabout lane's width when none is given [m].
-  static constexpr double default_lane_width = 3.5;
-
   /// `drivable_area: {roundabout: true}` or `{roundabout: {lane_width_m: W}}`: the lanes of the file's
   /// roundabout, each W wide (3.5 m for `true`; `mm::sim::roundabout_lanes`).
   void read_roundabout_lanes(const field& f) {
-    double lane_width = default_lane_width;
+    double lane_width = default_roundabout_lane_width;
     field width_field = f;
     if (f.node.IsMap()) {
       const map_view v(ctx_, {f});
       v.allow({"lane_width_m"});
       if (auto w = v.get("lane_width_m")) width_field = *w;
-      lane_width = v.quantity_or("lane_width", {metres}, default_lane_width, range::positive);
+      lane_width = v.quantity_or("lane_width", {metres}, default_roundabout_lane_width, range::positive);
     } else if (!read_bool(ctx_, f)) {
       return;
     }
@@ -373,6 +371,7 @@ class mapper {
                      "edge would turn inside out)");
     }
     add_to_drivable_area(mm::sim::roundabout_lanes(ring, arms_of(*result_.roundabout), lane_width));
+    result_.roundabout->lane_width = lane_width;
   }
 
   void read_defaults(const map_view& top) {

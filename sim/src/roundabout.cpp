@@ -4,6 +4,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace mm::sim {
 namespace {
@@ -69,17 +70,22 @@ void append_exit(path& route, const roundabout& ring, const roundabout_arm& exit
   route.straight(exit.straight_length);
 }
 
-/// Appends to `outline` the lane `width` wide about `centre`: a quadrilateral {a − n, b − n, b + n,
-/// a + n} between consecutive cross-sections a and b (n: half the width along the left normal),
-/// one per straight and one per chord of an arc; the first one's start edge (3) is open when
-/// `open_start`, the last one's end edge (1) when `open_end`.
-void add_lane(mm::drivable_outline& outline, const path& centre, double width, bool open_start, bool open_end) {
+/// One chord of a lane: the cross-sections at its two ends, each a centre point and half the lane's
+/// width along the left normal there.
+struct lane_chord {
+  vec2 a, na, b, nb;
+};
+
+/// The lane `width` wide about `centre` as chords between cross-sections perpendicular to it: one
+/// per straight, and for an arc as many as keep each within `roundabout_lane_chord_error` of the
+/// outer edge's circle.
+std::vector<lane_chord> lane_chords(const path& centre, double width) {
   const double half = 0.5 * width;
   const auto cross_section = [&](double s) {
     const path_point p = centre.at(s);
     return std::pair{p.position, half * unit_vector(p.heading + pi / 2.0)};
   };
-  const std::size_t first = outline.polygons.size();
+  std::vector<lane_chord> chords_of_lane;
   for (const path_segment& piece : centre.segments()) {
     std::size_t chords = 1;
     if (piece.curvature != 0.0) {
@@ -94,11 +100,33 @@ void add_lane(mm::drivable_outline& outline, const path& centre, double width, b
       const double to = piece.start_arc_length + piece.length * static_cast<double>(i + 1) / static_cast<double>(chords);
       const auto [a, na] = cross_section(from);
       const auto [b, nb] = cross_section(to);
-      outline.polygons.push_back({a - na, b - nb, b + nb, a + na});
+      chords_of_lane.push_back({a, na, b, nb});
     }
   }
+  return chords_of_lane;
+}
+
+/// Appends to `outline` the lane of `chords`: a quadrilateral {a − n, b − n, b + n, a + n} per
+/// chord; the first one's start edge (3) is open when `open_start`, the last one's end edge (1)
+/// when `open_end`.
+void add_lane(mm::drivable_outline& outline, const std::vector<lane_chord>& chords, bool open_start, bool open_end) {
+  const std::size_t first = outline.polygons.size();
+  for (const lane_chord& c : chords) outline.polygons.push_back({c.a - c.na, c.b - c.nb, c.b + c.nb, c.a + c.na});
   if (open_start) outline.open_edges.push_back({first, 3});
   if (open_end) outline.open_edges.push_back({outline.polygons.size() - 1, 1});
+}
+
+/// The edges of the chords [first, last): the start cross-section of the first, then each chord's
+/// end cross-section.
+lane_edges edges_of(const std::vector<lane_chord>& chords, std::size_t first, std::size_t last) {
+  lane_edges edges;
+  edges.left.push_back(chords[first].a + chords[first].na);
+  edges.right.push_back(chords[first].a - chords[first].na);
+  for (std::size_t i = first; i < last; ++i) {
+    edges.left.push_back(chords[i].b + chords[i].nb);
+    edges.right.push_back(chords[i].b - chords[i].nb);
+  }
+  return edges;
 }
 
 /// The connecting arc and straight of `exit`, from the ring at its diverge angle.
@@ -109,11 +137,8 @@ path exit_piece(const roundabout& ring, const roundabout_arm& exit) {
   return result;
 }
 
-}  // namespace
-
-double widest_lane(const roundabout& ring) { return 2.0 * std::min(ring.radius, ring.connection_radius); }
-
-mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width) {
+/// Throws unless the ring and arms are valid and 0 < `lane_width` < `widest_lane(ring)`.
+void check_lane_width(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width) {
   check(ring);
   for (const roundabout_arm& arm : arms) check(ring, arm);
   if (!(std::isfinite(lane_width) && lane_width > 0.0 && lane_width < widest_lane(ring))) {
@@ -121,13 +146,39 @@ mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const ro
                                 ": expected above 0 and below twice the smaller of radius and connection_radius (" +
                                 std::to_string(widest_lane(ring)) + ")");
   }
+}
+
+}  // namespace
+
+double widest_lane(const roundabout& ring) { return 2.0 * std::min(ring.radius, ring.connection_radius); }
+
+mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width) {
+  check_lane_width(ring, arms, lane_width);
   mm::drivable_outline outline;
-  add_lane(outline, path::circular_arc(ring.center, ring.radius, 0.0, 2.0 * pi), lane_width, false, false);
+  add_lane(outline, lane_chords(path::circular_arc(ring.center, ring.radius, 0.0, 2.0 * pi), lane_width), false, false);
   for (const roundabout_arm& arm : arms) {
-    add_lane(outline, entry_piece(ring, arm), lane_width, true, false);
-    add_lane(outline, exit_piece(ring, arm), lane_width, false, true);
+    add_lane(outline, lane_chords(entry_piece(ring, arm), lane_width), true, false);
+    add_lane(outline, lane_chords(exit_piece(ring, arm), lane_width), false, true);
   }
   return outline;
+}
+
+std::vector<lane_edges> roundabout_lane_edges(const roundabout& ring, std::span<const roundabout_arm> arms,
+                                              double lane_width) {
+  check_lane_width(ring, arms, lane_width);
+  std::vector<lane_edges> lanes;
+  const std::vector<lane_chord> circle = lane_chords(path::circular_arc(ring.center, ring.radius, 0.0, 2.0 * pi), lane_width);
+  const std::size_t quarters = std::min<std::size_t>(4, circle.size());
+  for (std::size_t q = 0; q < quarters; ++q) {
+    lanes.push_back(edges_of(circle, circle.size() * q / quarters, circle.size() * (q + 1) / quarters));
+  }
+  for (const roundabout_arm& arm : arms) {
+    const std::vector<lane_chord> entry = lane_chords(entry_piece(ring, arm), lane_width);
+    const std::vector<lane_chord> exit = lane_chords(exit_piece(ring, arm), lane_width);
+    lanes.push_back(edges_of(entry, 0, entry.size()));
+    lanes.push_back(edges_of(exit, 0, exit.size()));
+  }
+  return lanes;
 }
 
 double merge_angle(const roundabout& ring, const roundabout_arm& entry) {

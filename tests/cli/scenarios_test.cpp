@@ -10,6 +10,7 @@
 #include "cli/support.hpp"
 #include "mm/cli/commands.hpp"
 #include "mm/commonroad/reader.hpp"
+#include "mm/commonroad/scenario.hpp"
 #include "mm/drivable_area.hpp"
 #include "mm/footprint.hpp"
 #include "sim/scenarios.hpp"
@@ -362,6 +363,39 @@ TEST(cli_outputs, a_run_written_as_a_commonroad_recording_has_every_road_user_wh
   settings.out_dir = dir / "never";
   EXPECT_THROW(run_scenario(loaded, settings), input_error);
   EXPECT_FALSE(std::filesystem::exists(dir / "never"));
+}
+
+TEST(cli_outputs, a_roundabout_run_written_as_a_commonroad_recording_has_the_roundabouts_lanes) {
+  const sf::loaded_scenario loaded = sf::load("s2-roundabout");
+  ASSERT_TRUE(loaded.roundabout.has_value());
+  const temp_dir dir("commonroad_roundabout");
+  run_settings settings;
+  settings.out_dir = dir.path();
+  settings.commonroad_file = dir / "s2.xml";
+  settings.commonroad_step = 0.1;
+  run_scenario(loaded, settings);
+  const mm::commonroad::scenario recording = mm::commonroad::read_scenario(dir / "s2.xml");
+  // The ring in four lanelets, an entry and an exit per arm, after the roads' pieces.
+  ASSERT_EQ(recording.lanelets.size(), 4U + 2U * loaded.roundabout->arms.size());
+  const mm::drivable_area lanes(mm::commonroad::lanelet_polygons(recording));
+  EXPECT_FALSE(lanes.contains(loaded.roundabout->ring.center)) << "the central island is not a lane";
+  // Every vehicle drives on the lanes: each recorded reference point is on them.
+  std::size_t states = 0;
+  for (const mm::commonroad::obstacle& o : recording.obstacles) {
+    if (o.type != "car") continue;
+    for (const mm::commonroad::state& x : o.states) {
+      EXPECT_TRUE(lanes.contains(x.position)) << "obstacle " << o.id << " at step " << x.step << ": (" << x.position.x
+                                               << ", " << x.position.y << ")";
+      ++states;
+    }
+  }
+  std::size_t rows_on_grid = 0;  // the run's rows at multiples of 0.1 s: t, agent, x, y, ...
+  for (const auto& row : csv_rows(dir / "trajectories.csv")) {
+    const double t = std::stod(row[0]);
+    rows_on_grid += std::abs(t - 0.1 * std::round(t / 0.1)) <= 1e-9 ? 1 : 0;
+  }
+  EXPECT_EQ(states, rows_on_grid);
+  EXPECT_GT(states, 90U);
 }
 
 TEST(cli_outputs, a_vehicle_planning_without_a_map_column_has_its_decisions_and_no_map_rows) {

@@ -59,7 +59,14 @@ struct named_arm {
 struct roundabout_geometry {
   mm::sim::roundabout ring;
   std::vector<named_arm> arms;  ///< in file order
+  /// The width of its lanes in the drivable area [m] (`drivable_area: {roundabout: ...}`), if the
+  /// scenario makes one of them.
+  std::optional<double> lane_width;
 };
+
+/// The width of a roundabout's lanes [m] where a scenario gives none (`drivable_area: {roundabout:
+/// true}`, `--on-roads`, the lanes of a CommonRoad recording).
+inline constexpr double default_roundabout_lane_width = 3.5;
 
 /// A road drawn under the agents; not used by the simulation.
 struct road {

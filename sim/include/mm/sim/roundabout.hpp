@@ -1,6 +1,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "mm/drivable_area.hpp"
 #include "mm/geometry.hpp"
@@ -86,5 +87,20 @@ double widest_lane(const roundabout& ring);
 /// Throws std::invalid_argument unless 0 < w < `widest_lane(ring)` and every arm is valid (as
 /// `merge_angle`).
 mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width);
+
+/// A lane's two edges, each a polyline in the direction of travel [m]: `left` on the left of it.
+struct lane_edges {
+  std::vector<vec2> left;
+  std::vector<vec2> right;
+};
+
+/// The lanes of `roundabout_lanes` as edge polylines, e.g. for CommonRoad lanelets (left and right
+/// bound): the circulating lane in four pieces from polar angle 0 counter-clockwise (one lane drawn
+/// closed would enclose no area), then for every arm its entry lane and its exit lane. Their
+/// cross-sections are those of `roundabout_lanes`' quadrilaterals (where two pieces of a centre line
+/// meet, the end of the first's), so the lanes cover its drivable area.
+/// Throws as `roundabout_lanes`.
+std::vector<lane_edges> roundabout_lane_edges(const roundabout& ring, std::span<const roundabout_arm> arms,
+                                              double lane_width);
 
 }  // namespace mm::sim
