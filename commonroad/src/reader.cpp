@@ -132,6 +132,7 @@ class reader {
     if (!step || *step <= 0.0) fail(root, "commonRoad / timeStepSize", quote(step_text), step_size);
     result.time_step = *step;
     result.benchmark_id = trim(root.attribute("benchmarkID").value());
+    if (const std::string_view date = trim(root.attribute("date").value()); is_date(date)) result.date = date;
 
     std::unordered_map<std::uint32_t, pugi::xml_node> obstacle_ids;
     std::unordered_map<std::uint32_t, pugi::xml_node> problem_ids;

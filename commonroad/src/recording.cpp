@@ -85,6 +85,21 @@ std::vector<vec2> world_polygon(const footprint& shape, const state& x) {
   return {placed.vertices.begin(), placed.vertices.begin() + static_cast<std::ptrdiff_t>(placed.vertex_count)};
 }
 
+bool is_date(std::string_view text) {
+  const auto digits = [&](std::size_t from, std::size_t count) {
+    int value = 0;
+    for (std::size_t i = from; i < from + count; ++i) {
+      if (text[i] < '0' || text[i] > '9') return -1;
+      value = 10 * value + (text[i] - '0');
+    }
+    return value;
+  };
+  if (text.size() != 10 || text[4] != '-' || text[7] != '-' || digits(0, 4) < 0) return false;
+  const int month = digits(5, 2);
+  const int day = digits(8, 2);
+  return month >= 1 && month <= 12 && day >= 1 && day <= 31;
+}
+
 drivable_outline lanelet_polygons(const scenario& s) {
   drivable_outline outline;
   for (const lanelet& l : s.lanelets) {

@@ -3,6 +3,8 @@
 #include <pugixml.hpp>
 
 #include <algorithm>
+#include <array>
+#include <charconv>
 #include <cerrno>
 #include <fstream>
 #include <sstream>
@@ -12,7 +14,6 @@
 #include <variant>
 
 #include "mm/commonroad/reader.hpp"
-#include "mm/number_text.hpp"
 
 namespace mm::commonroad {
 namespace {
@@ -21,7 +22,15 @@ void add_text(pugi::xml_node parent, const char* name, const std::string& text) 
   parent.append_child(name).text().set(text.c_str());
 }
 
-void add_number(pugi::xml_node parent, const char* name, double value) { add_text(parent, name, number_text(value)); }
+/// `value` as the shortest fixed-point text that reads back as the same double ("0.00001", not
+/// "1e-05"): the schema's numbers are `xs:decimal`, which has no exponent.
+std::string decimal_text(double value) {
+  std::array<char, 400> buffer{};  // the longest, 2^-1074 or 2^1023 written out, is below 330
+  const auto end = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed).ptr;
+  return std::string(buffer.data(), end);
+}
+
+void add_number(pugi::xml_node parent, const char* name, double value) { add_text(parent, name, decimal_text(value)); }
 
 /// `<name><exact>value</exact></name>`.
 void add_exact(pugi::xml_node parent, const char* name, const std::string& value) {
@@ -38,11 +47,24 @@ void add_point(pugi::xml_node parent, vec2 p) {
 /// rate. `velocity`: written (dynamic obstacles, planning problems), or only when not 0 (static).
 void add_state(pugi::xml_node node, const state& x, bool velocity) {
   add_point(node.append_child("position"), x.position);
-  add_exact(node, "orientation", number_text(x.orientation));
+  add_exact(node, "orientation", decimal_text(x.orientation));
   add_exact(node, "time", std::to_string(x.step));
-  if (velocity || x.velocity != 0.0) add_exact(node, "velocity", number_text(x.velocity));
-  if (x.acceleration) add_exact(node, "acceleration", number_text(*x.acceleration));
-  if (x.yaw_rate) add_exact(node, "yawRate", number_text(*x.yaw_rate));
+  if (velocity || x.velocity != 0.0) add_exact(node, "velocity", decimal_text(x.velocity));
+  if (x.acceleration) add_exact(node, "acceleration", decimal_text(*x.acceleration));
+  if (x.yaw_rate) add_exact(node, "yawRate", decimal_text(*x.yaw_rate));
+}
+
+/// A planning problem's initial state, whose elements the schema requires all of: position,
+/// velocity, orientation, yaw rate (0 when `x` has none), slip angle (0: not read), time, and the
+/// acceleration when `x` has one.
+void add_initial_state(pugi::xml_node node, const state& x) {
+  add_point(node.append_child("position"), x.position);
+  add_exact(node, "velocity", decimal_text(x.velocity));
+  add_exact(node, "orientation", decimal_text(x.orientation));
+  add_exact(node, "yawRate", decimal_text(x.yaw_rate.value_or(0.0)));
+  add_exact(node, "slipAngle", "0.0");
+  add_exact(node, "time", std::to_string(x.step));
+  if (x.acceleration) add_exact(node, "acceleration", decimal_text(*x.acceleration));
 }
 
 void add_shape(pugi::xml_node node, const footprint& shape) {
@@ -76,18 +98,39 @@ std::int64_t last_step(const scenario& s) {
 
 }  // namespace
 
+scenario as_written(scenario s) {
+  s.version = "2020a";
+  if (s.date.empty()) s.date = undated;
+  std::stable_partition(s.obstacles.begin(), s.obstacles.end(),
+                        [](const obstacle& o) { return o.role == obstacle_role::static_obstacle; });
+  for (planning_problem& p : s.planning_problems) {
+    if (!p.initial.yaw_rate) p.initial.yaw_rate = 0.0;
+  }
+  return s;
+}
+
 std::string scenario_xml(const scenario& s) {
   pugi::xml_document document;
   pugi::xml_node declaration = document.append_child(pugi::node_declaration);
   declaration.append_attribute("version") = "1.0";
   declaration.append_attribute("encoding") = "UTF-8";
   pugi::xml_node root = document.append_child("commonRoad");
-  root.append_attribute("timeStepSize") = number_text(s.time_step).c_str();
+  if (!s.date.empty() && !is_date(s.date)) {
+    throw std::invalid_argument("scenario_xml: date '" + s.date + "': expected YYYY-MM-DD or none");
+  }
   root.append_attribute("commonRoadVersion") = "2020a";
   root.append_attribute("benchmarkID") = s.benchmark_id.c_str();
+  root.append_attribute("date") = (s.date.empty() ? std::string(undated) : s.date).c_str();
   root.append_attribute("author") = "maneuvermap";
   root.append_attribute("affiliation") = "";
   root.append_attribute("source") = "maneuvermap";
+  root.append_attribute("timeStepSize") = decimal_text(s.time_step).c_str();
+  // CommonRoad's values for an unknown place (GeoNames id -999, latitude and longitude 999).
+  pugi::xml_node location = root.append_child("location");
+  add_text(location, "geoNameId", "-999");
+  add_text(location, "gpsLatitude", "999.0");
+  add_text(location, "gpsLongitude", "999.0");
+  root.append_child("scenarioTags");
   for (const lanelet& l : s.lanelets) {
     pugi::xml_node node = root.append_child("lanelet");
     node.append_attribute("id") = l.id;
@@ -95,25 +138,30 @@ std::string scenario_xml(const scenario& s) {
     for (const vec2 p : l.left_bound) add_point(left, p);
     pugi::xml_node right = node.append_child("rightBound");
     for (const vec2 p : l.right_bound) add_point(right, p);
+    add_text(node, "laneletType", "unknown");
   }
-  for (const obstacle& o : s.obstacles) {
-    const bool dynamic = o.role == obstacle_role::dynamic_obstacle;
-    pugi::xml_node node = root.append_child(dynamic ? "dynamicObstacle" : "staticObstacle");
-    node.append_attribute("id") = o.id;
-    add_text(node, "type", o.type);
-    add_shape(node, o.shape);
-    if (o.states.empty()) continue;  // the reader names it
-    add_state(node.append_child("initialState"), o.states.front(), dynamic);
-    if (o.states.size() > 1) {
-      pugi::xml_node trajectory = node.append_child("trajectory");
-      for (std::size_t k = 1; k < o.states.size(); ++k) add_state(trajectory.append_child("state"), o.states[k], dynamic);
+  // The schema's order: every static obstacle before the dynamic ones.
+  for (const obstacle_role role : {obstacle_role::static_obstacle, obstacle_role::dynamic_obstacle}) {
+    for (const obstacle& o : s.obstacles) {
+      if (o.role != role) continue;
+      const bool dynamic = o.role == obstacle_role::dynamic_obstacle;
+      pugi::xml_node node = root.append_child(dynamic ? "dynamicObstacle" : "staticObstacle");
+      node.append_attribute("id") = o.id;
+      add_text(node, "type", o.type);
+      add_shape(node, o.shape);
+      if (o.states.empty()) continue;  // the reader names it
+      add_state(node.append_child("initialState"), o.states.front(), dynamic);
+      if (o.states.size() > 1) {
+        pugi::xml_node trajectory = node.append_child("trajectory");
+        for (std::size_t k = 1; k < o.states.size(); ++k) add_state(trajectory.append_child("state"), o.states[k], dynamic);
+      }
     }
   }
   const std::int64_t end = last_step(s);
   for (const planning_problem& p : s.planning_problems) {
     pugi::xml_node node = root.append_child("planningProblem");
     node.append_attribute("id") = p.id;
-    add_state(node.append_child("initialState"), p.initial, true);
+    add_initial_state(node.append_child("initialState"), p.initial);
     pugi::xml_node time = node.append_child("goalState").append_child("time");
     add_text(time, "intervalStart", std::to_string(p.initial.step));
     add_text(time, "intervalEnd", std::to_string(std::max(end, p.initial.step)));
@@ -128,8 +176,7 @@ std::string scenario_xml(const scenario& s) {
   } catch (const read_error& e) {
     throw std::invalid_argument(std::string("scenario_xml: the scenario is not one a CommonRoad file can state: ") + e.what());
   }
-  scenario expected = s;
-  expected.version = back.version;
+  const scenario expected = as_written(s);
   if (!(back == expected)) throw std::invalid_argument("scenario_xml: the scenario does not read back as itself");
   return text;
 }

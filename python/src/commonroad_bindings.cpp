@@ -122,6 +122,7 @@ void bind_commonroad(py::module_& m) {
   py::class_<cr::scenario>(m, "scenario", "What a CommonRoad file holds, as far as measuring needs it.")
       .def_readonly("benchmark_id", &cr::scenario::benchmark_id)
       .def_readonly("version", &cr::scenario::version, "2018b or 2020a")
+      .def_readonly("date", &cr::scenario::date, "the file's date, YYYY-MM-DD, or empty")
       .def_readonly("time_step", &cr::scenario::time_step, "[s]")
       .def_readonly("lanelets", &cr::scenario::lanelets)
       .def_readonly("obstacles", &cr::scenario::obstacles, "in file order")
@@ -144,8 +145,9 @@ void bind_commonroad(py::module_& m) {
   m.def("read_scenario_text", &cr::read_scenario_text, py::arg("text"), py::arg("source") = "<text>",
         py::call_guard<py::gil_scoped_release>(), "As read_scenario, from the XML text itself.");
   m.def("scenario_xml", &cr::scenario_xml, py::arg("scenario"),
-        "The CommonRoad XML (2020a) that read_scenario_text reads as `scenario` again, bit for bit (its version "
-        "aside); ValueError when it would not.");
+        "The CommonRoad XML (2020a, with what its schema requires) that read_scenario_text reads as `scenario` "
+        "again, bit for bit, but for its version (2020a), its date when it has none (1970-01-01), its static "
+        "obstacles first and a planning problem's missing yaw rate (0); ValueError when it would not.");
   m.def("write_scenario", &cr::write_scenario, py::arg("scenario"), py::arg("file"),
         "Writes scenario_xml(scenario) to `file`.");
 

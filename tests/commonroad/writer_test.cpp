@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <stdexcept>
@@ -11,6 +12,8 @@
 #include <vector>
 
 #include "mm/commonroad/reader.hpp"
+
+#include <pugixml.hpp>
 
 namespace {
 
@@ -35,10 +38,9 @@ void expect_reads_back(const std::filesystem::path& file) {
   SCOPED_TRACE(file.string());
   const scenario s = read_scenario(file);
   const std::string text = scenario_xml(s);
-  scenario back = read_scenario_text(text, "written");
+  const scenario back = read_scenario_text(text, "written");
   EXPECT_EQ(back.version, "2020a");
-  back.version = s.version;
-  EXPECT_TRUE(back == s);
+  EXPECT_TRUE(back == as_written(s));
   EXPECT_EQ(scenario_xml(back), text);
 }
 
@@ -75,12 +77,89 @@ TEST(commonroad_writer, shapes_optional_values_and_goals_are_written_as_the_form
   EXPECT_NE(text.find("<yawRate>"), std::string::npos) << text;
   EXPECT_NE(text.find("<intervalStart>0</intervalStart>"), std::string::npos) << text;
   EXPECT_NE(text.find("<intervalEnd>3</intervalEnd>"), std::string::npos) << "until the last recorded step:\n" << text;
-  EXPECT_EQ(text.find("<velocity>", text.find("staticObstacle")), text.find("<velocity>", text.find("planningProblem")))
+  const std::size_t static_start = text.find("<staticObstacle");
+  const std::size_t static_end = text.find("</staticObstacle>");
+  ASSERT_NE(static_end, std::string::npos) << text;
+  EXPECT_EQ(text.substr(static_start, static_end - static_start).find("<velocity>"), std::string::npos)
       << "a static obstacle at rest has no velocity:\n"
       << text;
-  scenario back = read_scenario_text(text, "written");
-  back.version = s.version;
-  EXPECT_TRUE(back == s);
+  const scenario back = read_scenario_text(text, "written");
+  EXPECT_TRUE(back == as_written(s));
+  EXPECT_EQ(back.date, undated);
+  ASSERT_EQ(back.obstacles.size(), 3U);
+  EXPECT_EQ(back.obstacles[0].id, 9U) << "the static obstacle first, as the schema orders them";
+  EXPECT_EQ(back.obstacles[1].id, 3U);
+  EXPECT_EQ(back.planning_problems[0].initial.yaw_rate, 0.0) << "the schema requires a yaw rate";
+}
+
+/// The names of `node`'s element children, in order.
+std::vector<std::string> child_names(pugi::xml_node node) {
+  std::vector<std::string> names;
+  for (pugi::xml_node c = node.first_child(); c; c = c.next_sibling()) {
+    if (c.type() == pugi::node_element) names.emplace_back(c.name());
+  }
+  return names;
+}
+
+/// Every text of an element under `node` (numbers, ids, types).
+void collect_texts(pugi::xml_node node, std::vector<std::string>& texts) {
+  for (pugi::xml_node c = node.first_child(); c; c = c.next_sibling()) {
+    if (c.type() == pugi::node_pcdata) texts.emplace_back(c.value());
+    collect_texts(c, texts);
+  }
+}
+
+TEST(commonroad_writer, a_written_file_has_what_the_2020a_schema_requires) {
+  scenario s = read_scenario(source_dir() / "data/commonroad/ZAM_Tutorial-1_2_T-1.xml");
+  ASSERT_FALSE(s.obstacles.empty());
+  // Numbers that std::to_chars' shortest form writes with an exponent.
+  s.obstacles.front().states.front().velocity = 1e-05;
+  s.obstacles.front().states.front().position.x = 1.5e20;
+  s.obstacles.front().states.front().orientation = -2.5e-300;
+  s.obstacles.push_back({99, obstacle_role::static_obstacle, "parkedVehicle", mm::rectangle{4.5, 2.0},
+                         {{0, {10.0, 3.0}, 0.0, 0.0, std::nullopt, std::nullopt}}});
+  const std::string text = scenario_xml(s);
+  pugi::xml_document document;
+  ASSERT_TRUE(document.load_string(text.c_str()));
+  const pugi::xml_node root = document.document_element();
+  for (const char* attribute : {"commonRoadVersion", "benchmarkID", "date", "author", "affiliation", "source", "timeStepSize"}) {
+    EXPECT_TRUE(root.attribute(attribute)) << attribute;
+  }
+  EXPECT_EQ(std::string(root.attribute("date").value()), s.date) << "a read file's date is kept";
+  // The root's children in the schema's order: location, scenarioTags, lanelets, static obstacles,
+  // dynamic obstacles, planning problems.
+  const std::vector<std::string> order = {"location", "scenarioTags", "lanelet", "staticObstacle", "dynamicObstacle",
+                                          "planningProblem"};
+  std::size_t at = 0;
+  for (const std::string& name : child_names(root)) {
+    const auto place = std::find(order.begin(), order.end(), name);
+    ASSERT_NE(place, order.end()) << name;
+    const auto index = static_cast<std::size_t>(place - order.begin());
+    EXPECT_GE(index, at) << name << " after " << order[at];
+    at = std::max(at, index);
+  }
+  EXPECT_EQ(child_names(root.child("location")), (std::vector<std::string>{"geoNameId", "gpsLatitude", "gpsLongitude"}));
+  for (pugi::xml_node l = root.child("lanelet"); l; l = l.next_sibling("lanelet")) {
+    EXPECT_EQ(child_names(l), (std::vector<std::string>{"leftBound", "rightBound", "laneletType"})) << "lanelet " << l.attribute("id").value();
+  }
+  const pugi::xml_node problem = root.child("planningProblem");
+  ASSERT_TRUE(problem);
+  std::vector<std::string> initial = child_names(problem.child("initialState"));
+  std::sort(initial.begin(), initial.end());
+  for (const char* element : {"orientation", "position", "slipAngle", "time", "velocity", "yawRate"}) {
+    EXPECT_TRUE(std::binary_search(initial.begin(), initial.end(), std::string(element))) << element;
+  }
+  EXPECT_TRUE(problem.child("goalState").child("time")) << "a goal's time is required";
+  // xs:decimal: digits, one point, a sign; no exponent, no inf or nan.
+  std::vector<std::string> texts;
+  collect_texts(root, texts);
+  for (const std::string& t : texts) {
+    if (t.empty() || !(std::isdigit(static_cast<unsigned char>(t.front())) || t.front() == '-')) continue;  // a type
+    EXPECT_EQ(t.find_first_not_of("0123456789.-"), std::string::npos) << t;
+  }
+  EXPECT_NE(text.find("<x>150000000000000000000</x>"), std::string::npos);
+  EXPECT_NE(text.find("<exact>0.00001</exact>"), std::string::npos);
+  EXPECT_TRUE(read_scenario_text(text, "written") == as_written(s));
 }
 
 TEST(commonroad_writer, a_scenario_no_file_can_state_is_refused_and_an_unwritable_file_named) {

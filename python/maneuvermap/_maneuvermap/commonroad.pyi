@@ -189,6 +189,10 @@ class scenario:
         """2018b or 2020a"""
         ...
     @property
+    def date(self) -> str:
+        """the file's date, YYYY-MM-DD, or empty"""
+        ...
+    @property
     def time_step(self) -> float:
         """[s]"""
         ...
@@ -204,7 +208,7 @@ class scenario:
     def __repr__(self) -> str: ...
 
 def scenario_xml(scenario: scenario) -> str:
-    """The CommonRoad XML (2020a) that read_scenario_text reads as `scenario` again, bit for bit (its version aside); ValueError when it would not."""
+    """The CommonRoad XML (2020a, with what its schema requires) that read_scenario_text reads as `scenario` again, bit for bit, but for its version (2020a), its date when it has none (1970-01-01), its static obstacles first and a planning problem's missing yaw rate (0); ValueError when it would not."""
     ...
 
 class state:

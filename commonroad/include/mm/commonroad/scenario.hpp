@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "mm/drivable_area.hpp"
@@ -63,6 +64,7 @@ struct planning_problem {
 struct scenario {
   std::string benchmark_id;  ///< the root's `benchmarkID`
   std::string version;       ///< `commonRoadVersion`: "2018b" or "2020a"
+  std::string date;          ///< the root's `date` when it is one (`is_date`), else empty
   double time_step = 0.1;    ///< `timeStepSize` [s], > 0
   std::vector<lanelet> lanelets;
   std::vector<obstacle> obstacles;  ///< in file order; ids unique among them
@@ -70,6 +72,10 @@ struct scenario {
 
   friend bool operator==(const scenario&, const scenario&) = default;
 };
+
+/// Whether `text` is a calendar date written YYYY-MM-DD (month 01–12, day 01–31), the form of the
+/// root's `date`.
+bool is_date(std::string_view text);
 
 /// The lanelets as polygons, each its left bound then its right bound backwards: their union is the
 /// road network, the drivable area of a measurement or a replay on the lanelets (spec §5's road
