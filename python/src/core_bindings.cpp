@@ -13,6 +13,7 @@
 
 #include "bindings.hpp"
 #include "fields.hpp"
+#include "mm/input_bounds.hpp"
 #include "mm/planner.hpp"
 #include "mm/road_constraint.hpp"
 #include "mm/reference_planner.hpp"
@@ -409,6 +410,16 @@ void bind_result(py::module_& m) {
 void bind_planning(py::module_& m) {
   m.def("validation_error", &validation_error, py::arg("input"),
         "Why the input cannot be planned on (the field, its value and what was expected), or None.");
+  // The magnitudes validation_error accepts (mm/input_bounds.hpp), for callers that check their
+  // inputs before planning.
+  m.attr("largest_input_coordinate") = largest_input_coordinate;
+  m.attr("largest_input_speed") = largest_input_speed;
+  m.attr("largest_input_yaw_rate") = largest_input_yaw_rate;
+  m.attr("largest_input_acceleration") = largest_input_acceleration;
+  m.attr("smallest_input_turning_radius") = smallest_input_turning_radius;
+  m.attr("largest_input_safety_margin") = largest_input_safety_margin;
+  m.attr("largest_observation_age") = largest_observation_age;
+  m.attr("largest_footprint_size") = largest_footprint_size;
   m.def("plan", [](const plan_input& input) {
           const plan_input own = input;
           const py::gil_scoped_release release;

@@ -169,6 +169,25 @@ def test_invalid_input_raises_a_value_error_naming_the_field_its_value_and_what_
         mm.planner().plan(scene)
 
 
+def test_the_input_bounds_are_the_ones_validation_applies():
+    scene = crossing_scene()
+    scene.ego.limits.speed_cap = mm.largest_input_speed
+    scene.ego.speed = mm.largest_input_speed
+    assert mm.validation_error(scene) is None
+    scene.ego.limits.speed_cap = math.nextafter(mm.largest_input_speed, math.inf)
+    assert "speed_cap" in str(mm.validation_error(scene))
+    scene = crossing_scene()
+    scene.ego.pose = mm.pose(-mm.largest_input_coordinate, 0.0)
+    scene.obstacles = []
+    assert mm.validation_error(scene) is None
+    scene.ego.pose = mm.pose(-2.0 * mm.largest_input_coordinate, 0.0)
+    assert "ego.pose" in str(mm.validation_error(scene))
+    assert 0.0 < mm.smallest_input_turning_radius < 1.0 < mm.largest_input_yaw_rate
+    for bound in (mm.largest_input_acceleration, mm.largest_input_safety_margin, mm.largest_observation_age,
+                  mm.largest_footprint_size):
+        assert math.isfinite(bound) and bound > 0.0
+
+
 def test_an_unknown_field_is_a_type_error_that_lists_the_fields():
     with pytest.raises(TypeError, match="ego_state has no field 'sped'; its fields are: pose, speed, shape, limits"):
         mm.ego_state(sped=3.0)

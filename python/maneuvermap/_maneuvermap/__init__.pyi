@@ -242,6 +242,20 @@ def forecast_times(config: planner_config) -> List[float]:
     """The forecast grid τ_i = i·Δτ [s] (spec §4)."""
     ...
 
+largest_footprint_size: float
+
+largest_input_acceleration: float
+
+largest_input_coordinate: float
+
+largest_input_safety_margin: float
+
+largest_input_speed: float
+
+largest_input_yaw_rate: float
+
+largest_observation_age: float
+
 class maneuver:
     """u = (a, κ): constant acceleration [m/s²] and curvature [1/m] (spec §3)."""
     __hash__: ClassVar[None]  # type: ignore[assignment]
@@ -858,6 +872,8 @@ class sampling_resolution:
     """≥ 2"""
     curvatures: int
     """≥ 1"""
+
+smallest_input_turning_radius: float
 
 def starts_on_drivable_area(area: drivable_area, ego: ego_state) -> bool:
     """True when the road constraint binds the ego: its reference point in the area, its footprint clear of the boundary (spec §5)."""
