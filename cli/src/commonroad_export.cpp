@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -79,15 +80,26 @@ mm::commonroad::scenario commonroad_recording::scenario() const {
   s.version = "2020a";
   s.time_step = time_step_;
   std::uint32_t next_id = static_cast<std::uint32_t>(obstacles_.size() + 1);
+  // Each road piece continues the one before it on its road.
   for (const scenario_file::road& r : loaded_->roads) {
     const double half = 0.5 * r.width;
+    std::optional<std::size_t> before;
     for (std::size_t i = 0; i + 1 < r.centre_line.size(); ++i) {
       const vec2 a = r.centre_line[i];
       const vec2 b = r.centre_line[i + 1];
       const double length = norm(b - a);
       if (!(length > 0.0)) continue;
       const vec2 left{-(b.y - a.y) / length * half, (b.x - a.x) / length * half};
-      s.lanelets.push_back({next_id++, {a + left, b + left}, {a - left, b - left}});
+      mm::commonroad::lanelet piece;
+      piece.id = next_id++;
+      piece.left_bound = {a + left, b + left};
+      piece.right_bound = {a - left, b - left};
+      if (before) {
+        s.lanelets[*before].successors.push_back(piece.id);
+        piece.predecessors.push_back(s.lanelets[*before].id);
+      }
+      before = s.lanelets.size();
+      s.lanelets.push_back(std::move(piece));
     }
   }
   if (loaded_->roundabout) {
@@ -97,8 +109,20 @@ mm::commonroad::scenario commonroad_recording::scenario() const {
     const double widest = mm::sim::widest_lane(ring);
     double width = loaded_->roundabout->lane_width.value_or(scenario_file::default_roundabout_lane_width);
     if (!(width < widest)) width = 0.5 * widest;
-    for (mm::sim::lane_edges& lane : mm::sim::roundabout_lane_edges(ring, arms, width)) {
-      s.lanelets.push_back({next_id++, std::move(lane.left), std::move(lane.right)});
+    const std::size_t first = s.lanelets.size();
+    const std::vector<mm::sim::lane_edges> lanes = mm::sim::roundabout_lane_edges(ring, arms, width);
+    for (const mm::sim::lane_edges& lane : lanes) {
+      mm::commonroad::lanelet l;
+      l.id = next_id++;
+      l.left_bound = lane.left;
+      l.right_bound = lane.right;
+      s.lanelets.push_back(std::move(l));
+    }
+    for (std::size_t i = 0; i < lanes.size(); ++i) {
+      for (const std::size_t next : lanes[i].successors) {
+        s.lanelets[first + i].successors.push_back(s.lanelets[first + next].id);
+        s.lanelets[first + next].predecessors.push_back(s.lanelets[first + i].id);
+      }
     }
   }
   for (const mm::commonroad::obstacle& o : obstacles_) {

@@ -191,6 +191,15 @@ class reader {
     return static_cast<std::uint32_t>(*id);
   }
 
+  /// The lanelet id of a link's `ref` (the lanelet need not be in the file).
+  std::uint32_t read_ref(pugi::xml_node n, const std::string& path) const {
+    constexpr std::string_view expected = "a lanelet id, a non-negative integer below 2^32";
+    const std::string_view text = attribute(n, "ref", path, expected);
+    const std::optional<std::uint64_t> id = to_integer<std::uint64_t>(text);
+    if (!id || *id > std::numeric_limits<std::uint32_t>::max()) fail(n, sub(path, "ref"), quote(text), expected);
+    return static_cast<std::uint32_t>(*id);
+  }
+
   void unique(std::unordered_map<std::uint32_t, pugi::xml_node>& seen, std::uint32_t id, pugi::xml_node n,
               std::string_view what) const {
     const auto [it, inserted] = seen.emplace(id, n);
@@ -412,6 +421,11 @@ class reader {
     const std::string path = "lanelet " + std::to_string(l.id);
     l.left_bound = read_bound(n, "leftBound", path);
     l.right_bound = read_bound(n, "rightBound", path);
+    for (pugi::xml_node c = first_element(n); c; c = next_element(c.next_sibling())) {
+      const std::string_view name = c.name();
+      if (name == "predecessor") l.predecessors.push_back(read_ref(c, sub(path, "predecessor")));
+      if (name == "successor") l.successors.push_back(read_ref(c, sub(path, "successor")));
+    }
     return l;
   }
 

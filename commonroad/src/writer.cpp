@@ -138,6 +138,8 @@ std::string scenario_xml(const scenario& s) {
     for (const vec2 p : l.left_bound) add_point(left, p);
     pugi::xml_node right = node.append_child("rightBound");
     for (const vec2 p : l.right_bound) add_point(right, p);
+    for (const std::uint32_t id : l.predecessors) node.append_child("predecessor").append_attribute("ref") = id;
+    for (const std::uint32_t id : l.successors) node.append_child("successor").append_attribute("ref") = id;
     add_text(node, "laneletType", "unknown");
   }
   // The schema's order: every static obstacle before the dynamic ones.

@@ -108,12 +108,14 @@ void bind_commonroad(py::module_& m) {
         return "obstacle(id=" + std::to_string(o.id) + ", type=" + py::repr(py::str(o.type)).cast<std::string>() +
                ", " + std::to_string(o.states.size()) + " states)";
       });
-  py::class_<cr::lanelet>(m, "lanelet", "A lane: its two bounds, in the driving direction.")
+  py::class_<cr::lanelet>(m, "lanelet", "A lane: its two bounds, in the driving direction, and its links.")
       .def_readonly("id", &cr::lanelet::id)
       .def_property_readonly("left_bound", [](const cr::lanelet& l) { return points_of(l.left_bound); },
                              "[m], shape (points, 2)")
       .def_property_readonly("right_bound", [](const cr::lanelet& l) { return points_of(l.right_bound); },
                              "[m], shape (points, 2)")
+      .def_readonly("predecessors", &cr::lanelet::predecessors, "ids of the lanelets it continues")
+      .def_readonly("successors", &cr::lanelet::successors, "ids of the lanelets that continue it")
       .def("__repr__", [](const cr::lanelet& l) { return "lanelet(id=" + std::to_string(l.id) + ")"; });
   py::class_<cr::planning_problem>(m, "planning_problem", "The start of an ego task of the file.")
       .def_readonly("id", &cr::planning_problem::id)

@@ -166,17 +166,53 @@ mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const ro
 std::vector<lane_edges> roundabout_lane_edges(const roundabout& ring, std::span<const roundabout_arm> arms,
                                               double lane_width) {
   check_lane_width(ring, arms, lane_width);
+  // The ring's pieces run between consecutive junctions (merge and diverge angles, in [0, 2π)).
+  std::vector<double> junctions;
+  const auto in_turn = [](double angle) {
+    const double a = std::fmod(angle, 2.0 * pi);
+    return a < 0.0 ? a + 2.0 * pi : a;
+  };
+  for (const roundabout_arm& arm : arms) {
+    junctions.push_back(in_turn(merge_angle(ring, arm)));
+    junctions.push_back(in_turn(diverge_angle(ring, arm)));
+  }
+  if (junctions.empty()) junctions = {0.0, pi / 2.0, pi, 3.0 * pi / 2.0};
+  std::sort(junctions.begin(), junctions.end());
+  constexpr double same_angle = 1e-9;  // [rad]: junctions closer than this are one
+  junctions.erase(std::unique(junctions.begin(), junctions.end(),
+                              [](double a, double b) { return b - a <= same_angle; }),
+                  junctions.end());
+  if (junctions.size() > 1 && junctions.front() + 2.0 * pi - junctions.back() <= same_angle) junctions.pop_back();
+  const std::size_t pieces = junctions.size();
+  const auto piece_at = [&](double angle) {  // the piece that starts at the junction nearest `angle`
+    std::size_t best = 0;
+    double nearest = 2.0 * pi;
+    for (std::size_t k = 0; k < pieces; ++k) {
+      const double d = std::abs(std::remainder(angle - junctions[k], 2.0 * pi));
+      if (d < nearest) {
+        nearest = d;
+        best = k;
+      }
+    }
+    return best;
+  };
   std::vector<lane_edges> lanes;
-  const std::vector<lane_chord> circle = lane_chords(path::circular_arc(ring.center, ring.radius, 0.0, 2.0 * pi), lane_width);
-  const std::size_t quarters = std::min<std::size_t>(4, circle.size());
-  for (std::size_t q = 0; q < quarters; ++q) {
-    lanes.push_back(edges_of(circle, circle.size() * q / quarters, circle.size() * (q + 1) / quarters));
+  for (std::size_t k = 0; k < pieces; ++k) {
+    const double sweep = (k + 1 < pieces ? junctions[k + 1] : junctions.front() + 2.0 * pi) - junctions[k];
+    const std::vector<lane_chord> arc =
+        lane_chords(path::circular_arc(ring.center, ring.radius, junctions[k], pieces == 1 ? 2.0 * pi : sweep), lane_width);
+    lanes.push_back(edges_of(arc, 0, arc.size()));
+    lanes.back().successors.push_back((k + 1) % pieces);
   }
   for (const roundabout_arm& arm : arms) {
     const std::vector<lane_chord> entry = lane_chords(entry_piece(ring, arm), lane_width);
     const std::vector<lane_chord> exit = lane_chords(exit_piece(ring, arm), lane_width);
     lanes.push_back(edges_of(entry, 0, entry.size()));
+    lanes.back().successors.push_back(piece_at(merge_angle(ring, arm)));
+    const std::size_t exit_index = lanes.size();
     lanes.push_back(edges_of(exit, 0, exit.size()));
+    const std::size_t before_exit = (piece_at(diverge_angle(ring, arm)) + pieces - 1) % pieces;
+    lanes[before_exit].successors.push_back(exit_index);
   }
   return lanes;
 }

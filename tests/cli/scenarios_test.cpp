@@ -375,8 +375,21 @@ TEST(cli_outputs, a_roundabout_run_written_as_a_commonroad_recording_has_the_rou
   settings.commonroad_step = 0.1;
   run_scenario(loaded, settings);
   const mm::commonroad::scenario recording = mm::commonroad::read_scenario(dir / "s2.xml");
-  // The ring in four lanelets, an entry and an exit per arm, after the roads' pieces.
-  ASSERT_EQ(recording.lanelets.size(), 4U + 2U * loaded.roundabout->arms.size());
+  // The ring in pieces between its eight junctions, an entry and an exit per arm.
+  ASSERT_EQ(recording.lanelets.size(), 4U * loaded.roundabout->arms.size());
+  // Linked both ways: each successor has the lanelet among its predecessors; every lanelet of the
+  // ring has two predecessors or successors where an arm joins it.
+  std::size_t links = 0;
+  for (const mm::commonroad::lanelet& l : recording.lanelets) {
+    for (const std::uint32_t next : l.successors) {
+      const auto it = std::find_if(recording.lanelets.begin(), recording.lanelets.end(),
+                                   [&](const mm::commonroad::lanelet& m) { return m.id == next; });
+      ASSERT_NE(it, recording.lanelets.end()) << "lanelet " << l.id << " → " << next;
+      EXPECT_NE(std::find(it->predecessors.begin(), it->predecessors.end(), l.id), it->predecessors.end());
+      ++links;
+    }
+  }
+  EXPECT_EQ(links, 8U + 2U * loaded.roundabout->arms.size()) << "the ring's eight, an entry's and an exit's per arm";
   const mm::drivable_area lanes(mm::commonroad::lanelet_polygons(recording));
   EXPECT_FALSE(lanes.contains(loaded.roundabout->ring.center)) << "the central island is not a lane";
   // Every vehicle drives on the lanes: each recorded reference point is on them.

@@ -189,8 +189,8 @@ TEST(measure, on_its_lane_a_road_user_has_no_more_room_than_without_and_less_whe
   // The crossing with two lanelets: the ego's 3.5 m lane along y = 0 and the crossing car's along
   // x = 25 (spec §5's road constraint on their union).
   scenario s = crossing();
-  s.lanelets.push_back({10, {{-100, 1.75}, {200, 1.75}}, {{-100, -1.75}, {200, -1.75}}});
-  s.lanelets.push_back({11, {{23.25, -100}, {23.25, 100}}, {{26.75, -100}, {26.75, 100}}});
+  s.lanelets.push_back({10, {{-100, 1.75}, {200, 1.75}}, {{-100, -1.75}, {200, -1.75}}, {}, {}});
+  s.lanelets.push_back({11, {{23.25, -100}, {23.25, 100}}, {{26.75, -100}, {26.75, 100}}, {}, {}});
   measure_options on_lane = of(1);
   on_lane.drivable_area = std::make_shared<const mm::drivable_area>(lanelet_polygons(s));
   const measurement open = measure(s, of(1));

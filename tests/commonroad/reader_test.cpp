@@ -155,6 +155,9 @@ TEST(commonroad_reader, reads_the_obstacles_of_a_2018b_file_by_their_role) {
   EXPECT_EQ(s.lanelets[0].id, 3419U);
   EXPECT_EQ(s.lanelets[0].left_bound[0], (mm::vec2{29.1793, 70.0118}));
   EXPECT_EQ(s.lanelets[0].right_bound[2], (mm::vec2{23.0181, 64.4496}));
+  std::size_t links = 0;
+  for (const lanelet& l : s.lanelets) links += l.predecessors.size() + l.successors.size();
+  EXPECT_EQ(links, 2U * 84U) << "each of the file's 84 successor links has its predecessor link";
   ASSERT_EQ(s.obstacles.size(), 24U);
   for (const obstacle& o : s.obstacles) {
     EXPECT_EQ(o.role, obstacle_role::dynamic_obstacle);
@@ -543,6 +546,11 @@ std::vector<error_case> error_cases() {
        replaced(valid, "<dynamicObstacle", "<lanelet id=\"2\">\n<leftBound><point><x>0</x><y>0</y></point></leftBound>\n"
                                           "<rightBound><point><x>0</x><y>0</y></point><point><x>1</x><y>0</y></point></rightBound></lanelet>\n<dynamicObstacle"),
        "<leftBound>", {"lanelet 2 / leftBound: 1 point(s): expected a polyline of at least 2 <point>s"}},
+      {"a link that is no lanelet id",
+       replaced(valid, "<dynamicObstacle", "<lanelet id=\"2\">\n<leftBound><point><x>0</x><y>0</y></point><point><x>1</x><y>0</y></point></leftBound>\n"
+                                          "<rightBound><point><x>0</x><y>-1</y></point><point><x>1</x><y>-1</y></point></rightBound>\n"
+                                          "<successor ref=\"next\"/></lanelet>\n<dynamicObstacle"),
+       "<successor", {"lanelet 2 / successor / ref: 'next': expected a lanelet id"}},
       {"a lanelet without right bound",
        replaced(valid, "<dynamicObstacle", "<lanelet id=\"2\">\n<leftBound><point><x>0</x><y>0</y></point><point><x>1</x><y>0</y></point></leftBound></lanelet>\n<dynamicObstacle"),
        "<lanelet", {"lanelet 2 / rightBound: missing"}},

@@ -50,7 +50,7 @@ TEST(world_polygon, a_disc_is_the_regular_16_gon_around_it_never_smaller) {
 
 TEST(lanelet_polygons, a_lanelet_is_its_left_bound_and_its_right_bound_backwards_with_open_ends) {
   mm::commonroad::scenario s;
-  s.lanelets.push_back({7, {{0, 2}, {10, 2}, {20, 2}}, {{0, -2}, {20, -2}}});
+  s.lanelets.push_back({7, {{0, 2}, {10, 2}, {20, 2}}, {{0, -2}, {20, -2}}, {}, {}});
   const mm::drivable_outline outline = mm::commonroad::lanelet_polygons(s);
   ASSERT_EQ(outline.polygons.size(), 1U);
   EXPECT_EQ(outline.polygons[0], (std::vector<mm::vec2>{{0, 2}, {10, 2}, {20, 2}, {20, -2}, {0, -2}}));
@@ -61,7 +61,7 @@ TEST(lanelet_polygons, a_lanelet_is_its_left_bound_and_its_right_bound_backwards
   for (const mm::segment& e : area.boundary()) length += mm::norm(e.b - e.a);
   EXPECT_NEAR(length, 40.0, 1e-9) << "only its two bounds are boundary";
   // A lanelet whose bounds enclose nothing is named.
-  s.lanelets.push_back({8, {{0, 0}, {10, 0}}, {{0, 0}, {10, 0}}});
+  s.lanelets.push_back({8, {{0, 0}, {10, 0}}, {{0, 0}, {10, 0}}, {}, {}});
   try {
     (void)mm::commonroad::lanelet_polygons(s);
     FAIL() << "no error";

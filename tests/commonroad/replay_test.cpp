@@ -238,7 +238,7 @@ TEST(replay, on_the_lanelets_the_replay_s_drivable_area_is_their_union_and_the_d
   // the lane, open ground. Off the lanelets the planner may swerve out of the lane; on them it must
   // stay in the lane, and brakes.
   scenario s = towards_a_parked_car();
-  s.lanelets.push_back({5, {{-50, 1.75}, {150, 1.75}}, {{-50, -1.75}, {150, -1.75}}});
+  s.lanelets.push_back({5, {{-50, 1.75}, {150, 1.75}}, {{-50, -1.75}, {150, -1.75}}, {}, {}});
   replay_options options;
   options.agent = 1;
   options.on_lanelets = true;

@@ -61,7 +61,7 @@ TEST(commonroad_writer, shapes_optional_values_and_goals_are_written_as_the_form
   scenario s;
   s.benchmark_id = "ZAM_Written-1_1_T-1";
   s.time_step = 0.04;
-  s.lanelets.push_back({7, {{0.0, 1.75}, {50.0, 1.75}}, {{0.0, -1.75}, {50.0, -1.75}}});
+  s.lanelets.push_back({7, {{0.0, 1.75}, {50.0, 1.75}}, {{0.0, -1.75}, {50.0, -1.75}}, {}, {}});
   obstacle car{3, obstacle_role::dynamic_obstacle, "car", mm::rectangle{4.4, 1.9}, {}};
   car.states.push_back({2, {1.0 / 3.0, 0.0}, 6.5, 10.0, 0.01, -0.5});
   car.states.push_back({3, {0.7333333333333333, 0.0}, 6.5, 9.98, std::nullopt, std::nullopt});

@@ -17,6 +17,10 @@ def test_a_recording_reads_into_its_road_users_and_lanes(source_dir):
     assert s.version in ("2018b", "2020a")
     assert s.time_step > 0
     assert s.lanelets and s.lanelets[0].left_bound.shape[1] == 2
+    assert s.date == "2023-04-19"
+    by_id = {lane.id: lane for lane in s.lanelets}
+    links = [(lane.id, next_id) for lane in s.lanelets for next_id in lane.successors]
+    assert links and all(lane in by_id[next_id].predecessors for lane, next_id in links if next_id in by_id)
     users = mm.commonroad.measurable_road_users(s)
     assert users
     first = s.obstacle(users[0])

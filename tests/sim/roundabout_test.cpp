@@ -181,56 +181,76 @@ TEST(sim_roundabout, the_lanes_end_half_a_lane_beside_their_centre_lines_and_lea
   }
 }
 
-TEST(sim_roundabout, the_lanes_edges_are_the_lanes_quadrilaterals_the_ring_in_four_pieces_that_join) {
+TEST(sim_roundabout, the_lanes_edges_are_a_lane_network_of_ring_pieces_between_junctions_and_the_arms_lanes) {
   const s2_geometry g;
   const double w = 3.5;
   const std::vector<lane_edges> lanes = roundabout_lane_edges(g.ring, g.arms, w);
   const mm::drivable_outline outline = roundabout_lanes(g.ring, g.arms, w);
-  ASSERT_EQ(lanes.size(), 4U + 2U * g.arms.size());
-  // Each lane's consecutive cross-sections are one quadrilateral {a − n, b − n, b + n, a + n} of
-  // the outline, in order: the ring's four pieces first, then each arm's entry and exit.
-  std::size_t quad = 0;
+  const std::size_t pieces = 2 * g.arms.size();  // S2's eight merge and diverge angles all differ
+  ASSERT_EQ(lanes.size(), pieces + 2U * g.arms.size());
+  const auto centre = [](const lane_edges& lane, std::size_t i) { return 0.5 * (lane.left[i] + lane.right[i]); };
   for (std::size_t l = 0; l < lanes.size(); ++l) {
+    ASSERT_EQ(lanes[l].left.size(), lanes[l].right.size()) << "lane " << l;
+    ASSERT_GE(lanes[l].left.size(), 2U) << "lane " << l;
+    for (std::size_t i = 0; i < lanes[l].left.size(); ++i) {
+      EXPECT_NEAR(mm::norm(lanes[l].left[i] - lanes[l].right[i]), w, 1e-9) << "lane " << l << ", cross-section " << i;
+    }
+    // A lane's successor starts where it ends.
+    for (const std::size_t next : lanes[l].successors) {
+      ASSERT_LT(next, lanes.size());
+      EXPECT_LT(mm::norm(centre(lanes[l], lanes[l].left.size() - 1) - centre(lanes[next], 0)), 1e-9)
+          << "lane " << l << " and its successor " << next;
+    }
+  }
+  // The arms' lanes are the outline's last quadrilaterals {right_i, right_i+1, left_i+1, left_i}, in order.
+  std::size_t arm_quads = 0;
+  for (std::size_t l = pieces; l < lanes.size(); ++l) arm_quads += lanes[l].left.size() - 1;
+  ASSERT_LE(arm_quads, outline.polygons.size());
+  std::size_t quad = outline.polygons.size() - arm_quads;
+  for (std::size_t l = pieces; l < lanes.size(); ++l) {
     const lane_edges& lane = lanes[l];
-    ASSERT_EQ(lane.left.size(), lane.right.size()) << "lane " << l;
-    ASSERT_GE(lane.left.size(), 2U) << "lane " << l;
     for (std::size_t i = 0; i + 1 < lane.left.size(); ++i, ++quad) {
-      ASSERT_LT(quad, outline.polygons.size());
       const std::vector<vec2>& q = outline.polygons[quad];
       const vec2 expected[] = {lane.right[i], lane.right[i + 1], lane.left[i + 1], lane.left[i]};
       for (std::size_t k = 0; k < 4; ++k) {
         EXPECT_LT(mm::norm(q[k] - expected[k]), 1e-9) << "lane " << l << ", cross-section " << i << ", vertex " << k;
       }
-      EXPECT_NEAR(mm::norm(lane.left[i] - lane.right[i]), w, 1e-9) << "lane " << l << ", cross-section " << i;
     }
   }
-  EXPECT_EQ(quad, outline.polygons.size());
-  // The ring's pieces: left (inner) edge R − w/2 and right (outer) edge R + w/2 from the centre,
-  // counter-clockwise from polar angle 0, each starting where the one before ends, round to the start.
-  for (std::size_t q = 0; q < 4; ++q) {
-    const lane_edges& piece = lanes[q];
+  // The ring's pieces: inner (left) edge R − w/2, outer (right) edge R + w/2, counter-clockwise,
+  // each followed by the next, round to the first.
+  for (std::size_t k = 0; k < pieces; ++k) {
+    const lane_edges& piece = lanes[k];
     for (std::size_t i = 0; i < piece.left.size(); ++i) {
       EXPECT_NEAR(mm::norm(piece.left[i] - g.ring.center), 25.0 - 0.5 * w, 1e-9);
       EXPECT_NEAR(mm::norm(piece.right[i] - g.ring.center), 25.0 + 0.5 * w, 1e-9);
     }
-    const lane_edges& next = lanes[(q + 1) % 4];
-    EXPECT_LT(mm::norm(piece.left.back() - next.left.front()), 1e-9) << "piece " << q;
-    EXPECT_LT(mm::norm(piece.right.back() - next.right.front()), 1e-9) << "piece " << q;
+    EXPECT_EQ(piece.successors.front(), (k + 1) % pieces) << "piece " << k;
     const vec2 from = piece.left.front() - g.ring.center;
     const vec2 to = piece.left.back() - g.ring.center;
-    EXPECT_GT(from.x * to.y - from.y * to.x, 0.0) << "piece " << q << " turns counter-clockwise";
+    EXPECT_GT(from.x * to.y - from.y * to.x, 0.0) << "piece " << k << " turns counter-clockwise";
   }
-  EXPECT_NEAR(lanes[0].right.front().y, g.ring.center.y, 1e-9);
-  // An entry lane ends on the ring at its merge angle and an exit lane starts there at its diverge
-  // angle, their centre between the edges on the ring's centre line.
+  // Each entry ends at its merge angle and leads onto the piece that starts there; the piece that
+  // ends at an exit's diverge angle leads onto that exit, which starts there.
   for (std::size_t a = 0; a < g.arms.size(); ++a) {
-    const lane_edges& entry = lanes[4 + 2 * a];
-    const lane_edges& exit = lanes[5 + 2 * a];
-    EXPECT_LT(mm::norm(0.5 * (entry.left.back() + entry.right.back()) - ring_point(g.ring, merge_angle(g.ring, g.arms[a]))), 1e-9);
-    EXPECT_LT(mm::norm(0.5 * (exit.left.front() + exit.right.front()) - ring_point(g.ring, diverge_angle(g.ring, g.arms[a]))), 1e-9);
+    const std::size_t entry = pieces + 2 * a;
+    const std::size_t exit = entry + 1;
+    const lane_edges& in = lanes[entry];
+    EXPECT_LT(mm::norm(centre(in, in.left.size() - 1) - ring_point(g.ring, merge_angle(g.ring, g.arms[a]))), 1e-9);
+    ASSERT_EQ(in.successors.size(), 1U);
+    EXPECT_LT(in.successors.front(), pieces);
+    EXPECT_LT(mm::norm(centre(lanes[exit], 0) - ring_point(g.ring, diverge_angle(g.ring, g.arms[a]))), 1e-9);
+    EXPECT_TRUE(lanes[exit].successors.empty());
+    std::size_t leading_to_exit = 0;
+    for (std::size_t k = 0; k < pieces; ++k) {
+      leading_to_exit += std::count(lanes[k].successors.begin(), lanes[k].successors.end(), exit);
+    }
+    EXPECT_EQ(leading_to_exit, 1U) << "arm " << a;
   }
   EXPECT_THROW(roundabout_lane_edges(g.ring, g.arms, 30.0), std::invalid_argument);
-  EXPECT_EQ(roundabout_lane_edges(g.ring, {}, w).size(), 4U);
+  const std::vector<lane_edges> ring_alone = roundabout_lane_edges(g.ring, {}, w);
+  ASSERT_EQ(ring_alone.size(), 4U);
+  EXPECT_NEAR(ring_alone[0].right.front().y, g.ring.center.y, 1e-9) << "the quarters start at polar angle 0";
 }
 
 TEST(sim_roundabout, lanes_too_wide_for_the_curves_or_not_positive_are_rejected) {

@@ -10,7 +10,7 @@ import maneuvermap._maneuvermap as _core
 from . import sim as _sim
 
 class lanelet:
-    """A lane: its two bounds, in the driving direction."""
+    """A lane: its two bounds, in the driving direction, and its links."""
     @property
     def id(self) -> int: ...
     @property
@@ -20,6 +20,14 @@ class lanelet:
     @property
     def right_bound(self) -> numpy.typing.NDArray[numpy.float64]:
         """[m], shape (points, 2)"""
+        ...
+    @property
+    def predecessors(self) -> List[int]:
+        """ids of the lanelets it continues"""
+        ...
+    @property
+    def successors(self) -> List[int]:
+        """ids of the lanelets that continue it"""
         ...
     def __repr__(self) -> str: ...
 

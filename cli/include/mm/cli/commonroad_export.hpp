@@ -19,10 +19,11 @@ namespace mm::cli {
 /// - a state per recorded time while the agent is present: its reference point, heading, speed,
 ///   acceleration and yaw rate (speed × curvature), over the steps of its first stretch of presence;
 /// - each planning vehicle also a planning problem with its obstacle's id and first state;
-/// - the scenario's roads as lanelets, one per piece of a road's centre line, `width` wide, and its
-///   roundabout's lanes (`mm::sim::roundabout_lane_edges`: the ring in four lanelets, an entry and
-///   an exit lanelet per arm) as wide as in its drivable area, else 3.5 m (half the widest lane the
-///   ring can have when that is narrower); a drivable area of other polygons is not written.
+/// - the scenario's roads as lanelets, one per piece of a road's centre line, `width` wide, each the
+///   successor of the piece before it; and its roundabout's lanes (`mm::sim::roundabout_lane_edges`:
+///   the ring's pieces between its junctions, an entry and an exit lanelet per arm, with their
+///   links) as wide as in its drivable area, else 3.5 m (half the widest lane the ring can have when
+///   that is narrower); a drivable area of other polygons is not written.
 class commonroad_recording {
  public:
   /// Throws `input_error` unless `time_step` [s] is a whole multiple of the run's time step.

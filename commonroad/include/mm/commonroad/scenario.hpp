@@ -43,11 +43,13 @@ struct obstacle {
   friend bool operator==(const obstacle&, const obstacle&) = default;
 };
 
-/// A lane of the road network: its two bounds, in the driving direction (for drawing).
+/// A lane of the road network: its two bounds, in the driving direction, and its links.
 struct lanelet {
   std::uint32_t id = 0;
   std::vector<vec2> left_bound;   ///< [m]
   std::vector<vec2> right_bound;  ///< [m]
+  std::vector<std::uint32_t> predecessors;  ///< ids of the lanelets it continues, as the file gives them
+  std::vector<std::uint32_t> successors;    ///< ids of the lanelets that continue it
 
   friend bool operator==(const lanelet&, const lanelet&) = default;
 };

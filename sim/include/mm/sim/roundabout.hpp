@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstddef>
 #include <span>
 #include <vector>
 
@@ -92,14 +93,18 @@ mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const ro
 struct lane_edges {
   std::vector<vec2> left;
   std::vector<vec2> right;
+  std::vector<std::size_t> successors;  ///< the lanes that continue it: indices into the same list
 };
 
-/// The lanes of `roundabout_lanes` as edge polylines, e.g. for CommonRoad lanelets (left and right
-/// bound): the circulating lane in four pieces from polar angle 0 counter-clockwise (one lane drawn
-/// closed would enclose no area), then for every arm its entry lane and its exit lane. Their
-/// cross-sections are those of `roundabout_lanes`' quadrilaterals (where two pieces of a centre line
-/// meet, the end of the first's), so the lanes cover its drivable area.
-/// Throws as `roundabout_lanes`.
+/// The lanes of `roundabout_lanes` as a lane network, e.g. for CommonRoad lanelets (left and right
+/// bound, successors): first the circulating lane in pieces between consecutive junctions (the
+/// merge and diverge angles, counter-clockwise from the smallest in [0, 2π); four quarters from 0
+/// without arms), each followed by the next and, where an exit diverges at its end, by that exit;
+/// then for every arm its entry lane, followed by the piece that starts at its merge angle, and its
+/// exit lane. Each lane is drawn as `roundabout_lanes` draws it, in chords between cross-sections
+/// perpendicular to its centre line within `roundabout_lane_chord_error` of its edges (the arms'
+/// lanes with the same cross-sections; the ring's pieces each with their own). Throws as
+/// `roundabout_lanes`.
 std::vector<lane_edges> roundabout_lane_edges(const roundabout& ring, std::span<const roundabout_arm> arms,
                                               double lane_width);
 
