@@ -71,12 +71,12 @@ measure_error cannot_replay(const obstacle& o, const std::string& why) {
 /// `profile`, or when there is none, of its recorded states.
 void check_limits(const obstacle& o, const sim::speed_profile* profile, double dt) {
   if (smallest_dimension(o.shape) < sim::smallest_road_user_size) {
-    throw cannot_replay(o, "its footprint is " + std::to_string(smallest_dimension(o.shape)) +
+    throw cannot_replay(o, "its footprint is " + number_text(smallest_dimension(o.shape)) +
                                " m across: expected at least 0.05 m, as in a scenario file");
   }
   const auto too_fast = [&](double v, double t) {
     if (!(v <= sim::largest_road_user_speed)) {
-      throw cannot_replay(o, "it moves at " + std::to_string(v) + " m/s, " + std::to_string(t) +
+      throw cannot_replay(o, "it moves at " + number_text(v) + " m/s, " + number_text(t) +
                                  " s after its start: expected at most 100 m/s, as in a scenario file");
     }
   };

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mm/number_text.hpp"
+
 namespace mm {
 namespace {
 
@@ -120,7 +122,7 @@ std::optional<std::string> drivable_area_error(const std::vector<std::vector<vec
     for (std::size_t j = 0; j < p.size(); ++j) {
       for (const double c : {p[j].x, p[j].y}) {
         if (!std::isfinite(c) || std::abs(c) > largest_drivable_coordinate) {
-          return name + "[" + std::to_string(j) + "] = (" + std::to_string(p[j].x) + ", " + std::to_string(p[j].y) +
+          return name + "[" + std::to_string(j) + "] = (" + number_text(p[j].x) + ", " + number_text(p[j].y) +
                  "); expected finite coordinates of at most 1e7 m in magnitude";
         }
       }

@@ -223,6 +223,17 @@ class mapper {
     if (auto c = v.get("center_m")) g.ring.center = read_point(ctx_, *c);
     g.ring.radius = v.quantity_or("radius", {metres}, g.ring.radius, range::positive);
     g.ring.connection_radius = v.quantity_or("connection_radius", {metres}, g.ring.connection_radius, range::positive);
+    // Every point of the ring's and the arms' lanes within the paths' bound: an arm reaches at most
+    // 2·(R + r) + its straight from the centre.
+    constexpr double bound = mm::sim::largest_path_coordinate;
+    const double ring_reach = std::max(std::abs(g.ring.center.x), std::abs(g.ring.center.y)) +
+                              2.0 * (g.ring.radius + g.ring.connection_radius);
+    if (!(ring_reach <= bound)) {
+      ctx_.fail(f.node, f.path,
+                "center_m, radius_m = " + number_text(g.ring.radius) + " and connection_radius_m = " +
+                    number_text(g.ring.connection_radius) + ": expected |center| + 2·(radius + connection_radius) ≤ " +
+                    number_text(bound) + " m (the bound of every path's coordinates)");
+    }
     const field arms = v.require("arms");
     if (!arms.node.IsMap() || arms.node.size() == 0) fail_value(ctx_, arms, "a map of named arms, e.g. east: {angle_deg: 0}");
     for (const auto& entry : arms.node) {
@@ -237,6 +248,12 @@ class mapper {
       arm.angle = a.required_quantity("angle", angle_units);
       arm.lane_offset = a.quantity_or("lane_offset", {metres}, arm.lane_offset, range::non_negative);
       arm.straight_length = a.quantity_or("straight_length", {metres}, arm.straight_length, range::positive);
+      if (!(ring_reach + arm.straight_length <= bound)) {
+        ctx_.fail(arm_field.node, arm_field.path,
+                  "straight_length_m = " + number_text(arm.straight_length) + ": expected at most " +
+                      number_text(bound - ring_reach) + " m, so that the arm stays within " + number_text(bound) +
+                      " m of the origin (the bound of every path's coordinates)");
+      }
       try {
         (void)mm::sim::merge_angle(g.ring, arm);
       } catch (const std::invalid_argument& e) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "mm/number_text.hpp"
+
 namespace mm::sim {
 namespace {
 
@@ -23,8 +25,8 @@ void check(const roundabout& ring, const roundabout_arm& arm) {
   check(ring);
   if (!std::isfinite(arm.angle) || !(arm.lane_offset >= 0.0 && arm.lane_offset < ring.radius) ||
       !(std::isfinite(arm.straight_length) && arm.straight_length > 0.0)) {
-    throw std::invalid_argument("roundabout arm: angle finite, 0 ≤ lane_offset = " + std::to_string(arm.lane_offset) +
-                                " < radius, straight_length = " + std::to_string(arm.straight_length) +
+    throw std::invalid_argument("roundabout arm: angle finite, 0 ≤ lane_offset = " + number_text(arm.lane_offset) +
+                                " < radius, straight_length = " + number_text(arm.straight_length) +
                                 " > 0 expected");
   }
 }
@@ -142,9 +144,9 @@ void check_lane_width(const roundabout& ring, std::span<const roundabout_arm> ar
   check(ring);
   for (const roundabout_arm& arm : arms) check(ring, arm);
   if (!(std::isfinite(lane_width) && lane_width > 0.0 && lane_width < widest_lane(ring))) {
-    throw std::invalid_argument("roundabout: lane width = " + std::to_string(lane_width) +
+    throw std::invalid_argument("roundabout: lane width = " + number_text(lane_width) +
                                 ": expected above 0 and below twice the smaller of radius and connection_radius (" +
-                                std::to_string(widest_lane(ring)) + ")");
+                                number_text(widest_lane(ring)) + ")");
   }
 }
 
@@ -250,7 +252,7 @@ path roundabout_exit_route(const roundabout& ring, double start_angle, const rou
 path roundabout_entry_route(const roundabout& ring, const roundabout_arm& entry, double sweep) {
   check(ring, entry);
   if (!(std::isfinite(sweep) && sweep > 0.0)) {
-    throw std::invalid_argument("roundabout: sweep = " + std::to_string(sweep) + ": expected a positive angle");
+    throw std::invalid_argument("roundabout: sweep = " + number_text(sweep) + ": expected a positive angle");
   }
   path route = entry_piece(ring, entry);
   route.turn(ring.radius, sweep);
@@ -260,7 +262,7 @@ path roundabout_entry_route(const roundabout& ring, const roundabout_arm& entry,
 path roundabout_ring(const roundabout& ring, double start_angle, double sweep) {
   check(ring);
   if (!(std::isfinite(sweep) && sweep > 0.0)) {
-    throw std::invalid_argument("roundabout: sweep = " + std::to_string(sweep) + ": expected a positive angle");
+    throw std::invalid_argument("roundabout: sweep = " + number_text(sweep) + ": expected a positive angle");
   }
   return path::circular_arc(ring.center, ring.radius, start_angle, sweep);
 }

@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "mm/number_text.hpp"
 #include "sensing.hpp"
 #include "worker_pool.hpp"
 
@@ -796,7 +797,7 @@ struct simulation::impl {
       record.result = planners_of_thread.for_speed(input.ego.speed).plan(input);
     }
     if (!record.result.ok()) {
-      throw std::logic_error("planning vehicle \"" + infos[id_of(v)].name + "\" at t = " + std::to_string(now()) +
+      throw std::logic_error("planning vehicle \"" + infos[id_of(v)].name + "\" at t = " + number_text(now()) +
                              " s: mm::plan rejected its input: " + record.result.error);
     }
     ++v.metrics.planning_steps;

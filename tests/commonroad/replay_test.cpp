@@ -326,7 +326,7 @@ TEST(replay, a_road_user_that_cannot_be_driven_or_moved_is_refused_with_its_id_a
   scenario tiny = traffic();
   tiny.obstacles[2].shape = mm::disc{0.01};
   EXPECT_PRED2(contains, refusal(tiny, 1),
-               "road user 3 (pedestrian): its footprint is 0.020000 m across: expected at least 0.05 m");
+               "road user 3 (pedestrian): its footprint is 0.02 m across: expected at least 0.05 m");
   scenario jump = traffic();
   jump.obstacles[1].states[10].position.x += 50.0;  // 500 m/s over one step, and back
   const std::string too_fast = refusal(jump, 1);

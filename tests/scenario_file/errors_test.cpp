@@ -165,6 +165,10 @@ const std::vector<error_case> cases{
     {"roundabout lanes too wide", with_line(5, "duration_s: 5\nroundabout: {connection_radius_m: 10, arms: {east: {angle_deg: 0}}}\n"
                                               "drivable_area: {roundabout: {lane_width_m: 20}}"), 7,
      "drivable_area.roundabout.lane_width_m", {"= 20", "a lane width below 20 m", "connection_radius_m"}},
+    {"a roundabout beyond the paths' bound", with_line(5, "duration_s: 5\nroundabout: {radius_m: 1e20, arms: {east: {angle_deg: 0}}}"), 6,
+     "roundabout", {"radius_m = 1e+20", "≤ 4e+07 m"}},
+    {"an arm beyond the paths' bound", with_line(5, "duration_s: 5\nroundabout: {arms: {east: {angle_deg: 0, straight_length_m: 1e9}}}"), 6,
+     "roundabout.arms.east", {"straight_length_m = 1e+09", "expected at most 39999910 m"}},
     {"unknown key in the roundabout's lanes", with_line(5, "duration_s: 5\nroundabout: {arms: {east: {angle_deg: 0}}}\n"
                                                         "drivable_area: {roundabout: {lane_width: 3}}"), 7,
      "drivable_area.roundabout.lane_width", {"unknown key", "did you mean lane_width_m?"}},
