@@ -72,6 +72,9 @@ void append_exit(path& route, const roundabout& ring, const roundabout_arm& exit
   route.straight(exit.straight_length);
 }
 
+/// Most chords of one arc of a lane: a ring of radius 2e7 m (the paths' bound) takes 44,429.
+constexpr double largest_lane_chords = 1e6;
+
 /// One chord of a lane: the cross-sections at its two ends, each a centre point and half the lane's
 /// width along the left normal there.
 struct lane_chord {
@@ -94,8 +97,14 @@ std::vector<lane_chord> lane_chords(const path& centre, double width) {
       // A chord over the angle Δ lies (ρ + w/2)(1 − cos(Δ/2)) inside the outer edge's circle.
       const double outer = 1.0 / std::abs(piece.curvature) + half;
       const double largest_angle = 2.0 * std::acos(1.0 - roundabout_lane_chord_error / outer);
-      chords = static_cast<std::size_t>(std::ceil(std::abs(piece.curvature) * piece.length / largest_angle));
-      chords = std::max<std::size_t>(chords, 1);
+      const double needed = std::ceil(std::abs(piece.curvature) * piece.length / largest_angle);
+      if (!(needed <= largest_lane_chords)) {  // also NaN, and inf where the radius makes the angle 0
+        throw std::invalid_argument("roundabout: an arc of radius " + number_text(outer - half) + " m over " +
+                                    number_text(piece.length) + " m needs " + number_text(needed) +
+                                    " chords within " + number_text(roundabout_lane_chord_error) +
+                                    " m of its edge: expected at most " + number_text(largest_lane_chords));
+      }
+      chords = std::max<std::size_t>(static_cast<std::size_t>(needed), 1);
     }
     for (std::size_t i = 0; i < chords; ++i) {
       const double from = piece.start_arc_length + piece.length * static_cast<double>(i) / static_cast<double>(chords);

@@ -266,6 +266,15 @@ TEST(sim_roundabout, lanes_too_wide_for_the_curves_or_not_positive_are_rejected)
   }
   EXPECT_THROW(roundabout_lanes(g.ring, std::vector<roundabout_arm>{{0.0, 30.0, 50.0}}, 3.5), std::invalid_argument);
   EXPECT_NO_THROW(roundabout_lanes(g.ring, {}, 3.5));  // the ring alone
+  // A ring too large to draw in chords within 5 cm (1 − 0.05/R rounds to 1: no angle is small enough).
+  const roundabout huge{{0.0, 0.0}, 1e20, 10.0};
+  try {
+    roundabout_lanes(huge, {}, 3.5);
+    FAIL() << "a ring of 1e20 m was drawn";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("expected at most 1e+06"), std::string::npos) << e.what();
+  }
+  EXPECT_THROW(roundabout_lane_edges(huge, {}, 3.5), std::invalid_argument);
 }
 
 }  // namespace

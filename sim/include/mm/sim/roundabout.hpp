@@ -86,7 +86,7 @@ double widest_lane(const roundabout& ring);
 /// offset) an arm's two lanes meet along its axis.
 ///
 /// Throws std::invalid_argument unless 0 < w < `widest_lane(ring)` and every arm is valid (as
-/// `merge_angle`).
+/// `merge_angle`), or when an arc would need more than a million chords (a ring of radius above 1e10 m).
 mm::drivable_outline roundabout_lanes(const roundabout& ring, std::span<const roundabout_arm> arms, double lane_width);
 
 /// A lane's two edges, each a polyline in the direction of travel [m]: `left` on the left of it.
