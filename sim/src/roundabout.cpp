@@ -127,15 +127,14 @@ void add_lane(mm::drivable_outline& outline, const std::vector<lane_chord>& chor
   if (open_end) outline.open_edges.push_back({outline.polygons.size() - 1, 1});
 }
 
-/// The edges of the chords [first, last): the start cross-section of the first, then each chord's
-/// end cross-section.
-lane_edges edges_of(const std::vector<lane_chord>& chords, std::size_t first, std::size_t last) {
+/// The edges of a lane's chords: the first one's start cross-section, then each one's end.
+lane_edges edges_of(const std::vector<lane_chord>& chords) {
   lane_edges edges;
-  edges.left.push_back(chords[first].a + chords[first].na);
-  edges.right.push_back(chords[first].a - chords[first].na);
-  for (std::size_t i = first; i < last; ++i) {
-    edges.left.push_back(chords[i].b + chords[i].nb);
-    edges.right.push_back(chords[i].b - chords[i].nb);
+  edges.left.push_back(chords.front().a + chords.front().na);
+  edges.right.push_back(chords.front().a - chords.front().na);
+  for (const lane_chord& c : chords) {
+    edges.left.push_back(c.b + c.nb);
+    edges.right.push_back(c.b - c.nb);
   }
   return edges;
 }
@@ -210,18 +209,17 @@ std::vector<lane_edges> roundabout_lane_edges(const roundabout& ring, std::span<
   std::vector<lane_edges> lanes;
   for (std::size_t k = 0; k < pieces; ++k) {
     const double sweep = (k + 1 < pieces ? junctions[k + 1] : junctions.front() + 2.0 * pi) - junctions[k];
-    const std::vector<lane_chord> arc =
-        lane_chords(path::circular_arc(ring.center, ring.radius, junctions[k], pieces == 1 ? 2.0 * pi : sweep), lane_width);
-    lanes.push_back(edges_of(arc, 0, arc.size()));
+    const std::vector<lane_chord> arc = lane_chords(path::circular_arc(ring.center, ring.radius, junctions[k], sweep), lane_width);
+    lanes.push_back(edges_of(arc));
     lanes.back().successors.push_back((k + 1) % pieces);
   }
   for (const roundabout_arm& arm : arms) {
     const std::vector<lane_chord> entry = lane_chords(entry_piece(ring, arm), lane_width);
     const std::vector<lane_chord> exit = lane_chords(exit_piece(ring, arm), lane_width);
-    lanes.push_back(edges_of(entry, 0, entry.size()));
+    lanes.push_back(edges_of(entry));
     lanes.back().successors.push_back(piece_at(merge_angle(ring, arm)));
     const std::size_t exit_index = lanes.size();
-    lanes.push_back(edges_of(exit, 0, exit.size()));
+    lanes.push_back(edges_of(exit));
     const std::size_t before_exit = (piece_at(diverge_angle(ring, arm)) + pieces - 1) % pieces;
     lanes[before_exit].successors.push_back(exit_index);
   }
