@@ -239,4 +239,19 @@ TEST(maneuvermap, a_run_written_as_a_commonroad_recording_is_measured_as_a_recor
   EXPECT_TRUE(contains(off_grid.err, "--commonroad-step 0.025000: expected a whole multiple of the run's time step")) << off_grid.err;
 }
 
+TEST(maneuvermap, a_roundabout_run_written_as_a_commonroad_recording_is_measured_on_its_lanes) {
+  const temp_dir dir("run_commonroad_lanes");
+  const std::string xml = (dir / "s2.xml").string();
+  const result r = run("run s2-roundabout --out " + (dir / "run").string() + " --commonroad " + xml, "run_commonroad_s2");
+  ASSERT_EQ(r.code, 0) << r.err;
+  const result measured =
+      run("measure " + xml + " --agent all --on-lanelets --out " + (dir / "measured").string(), "measure_commonroad_s2");
+  ASSERT_EQ(measured.code, 0) << measured.err;
+  // Both cars start every step on the recording's lanelets: on the ring's and the arms' lanes.
+  const std::string summary = read_file(dir / "measured" / "summary.json");
+  EXPECT_TRUE(contains(summary, "\"drivable_area\": \"lanelets\"")) << summary;
+  EXPECT_TRUE(contains(summary, "\"steps\": 45,\n      \"steps_on_drivable_area\": 45")) << summary;
+  EXPECT_TRUE(contains(summary, "\"steps\": 51,\n      \"steps_on_drivable_area\": 51")) << summary;
+}
+
 }  // namespace
