@@ -3,14 +3,19 @@
 // step (the loader's checks are the simulator's: a scenario it accepts that the simulator refuses
 // is a bug); small ones are stepped a few times, planning included. Every scenario that loads is
 // written back (`scenario_text`, which loads its own text and throws std::logic_error unless it reads
-// back bit for bit): a scenario that loads but cannot be written is a bug. Any other exception, a
+// back bit for bit): a scenario that loads but cannot be written is a bug, and so is a roundabout
+// whose lanes cannot be drawn as a CommonRoad recording draws them. Any other exception, a
 // crash, a leak or a hang is a bug. Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string_view>
+#include <vector>
 
 #include "mm/scenario_file/loader.hpp"
 #include "mm/scenario_file/writer.hpp"
+#include "mm/sim/roundabout.hpp"
 #include "mm/sim/simulation.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -19,6 +24,24 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const mm::scenario_file::loaded_scenario loaded = mm::scenario_file::load_text(text, "fuzz.yaml");
     const mm::sim::scenario& sc = loaded.scenario;
     (void)mm::scenario_file::scenario_text(loaded);
+    if (loaded.roundabout) {
+      // Its lanes as a CommonRoad recording writes them: finite, linked within the list.
+      const mm::scenario_file::roundabout_geometry& g = *loaded.roundabout;
+      std::vector<mm::sim::roundabout_arm> arms;
+      for (const auto& each : g.arms) arms.push_back(each.arm);
+      const double width = std::min(g.lane_width.value_or(mm::scenario_file::default_roundabout_lane_width),
+                                    0.5 * mm::sim::widest_lane(g.ring));
+      const std::vector<mm::sim::lane_edges> lanes = mm::sim::roundabout_lane_edges(g.ring, arms, width);
+      for (const mm::sim::lane_edges& lane : lanes) {
+        if (lane.left.size() < 2 || lane.left.size() != lane.right.size()) __builtin_trap();
+        for (const mm::vec2 p : lane.left) {
+          if (!std::isfinite(p.x) || !std::isfinite(p.y)) __builtin_trap();
+        }
+        for (const std::size_t next : lane.successors) {
+          if (next >= lanes.size()) __builtin_trap();
+        }
+      }
+    }
     const std::size_t agents =
         sc.planning_vehicles.size() + sc.scripted_vehicles.size() + sc.pedestrians.size() + sc.static_obstacles.size();
     if (agents > 12) return 0;  // the fuzzer's time goes to inputs, not to planning crowds
