@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <array>
-#include <charconv>
 #include <cerrno>
+#include <charconv>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -25,7 +25,7 @@ void add_text(pugi::xml_node parent, const char* name, const std::string& text) 
 /// `value` as the shortest fixed-point text that reads back as the same double ("0.00001", not
 /// "1e-05"): the schema's numbers are `xs:decimal`, which has no exponent.
 std::string decimal_text(double value) {
-  std::array<char, 400> buffer{};  // the longest, 2^-1074 or 2^1023 written out, is below 330
+  std::array<char, 400> buffer{};  // the longest, -2^-1074 written out, has 327 characters
   const auto end = std::to_chars(buffer.data(), buffer.data() + buffer.size(), value, std::chars_format::fixed).ptr;
   return std::string(buffer.data(), end);
 }

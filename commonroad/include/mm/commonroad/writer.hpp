@@ -21,12 +21,14 @@ scenario as_written(scenario s);
 /// every number bit for bit. It has what the 2020a schema requires: the root's `benchmarkID`,
 /// `date` (`undated` when `s` has none), `author` "maneuvermap", `affiliation`, `source` and
 /// `timeStepSize`; a `location` with CommonRoad's values for an unknown one (-999, 999, 999) and
-/// empty `scenarioTags`; each lanelet's two bounds and a `laneletType` of `unknown`; each static
+/// empty `scenarioTags`; each lanelet's two bounds, its predecessors and successors, and a
+/// `laneletType` of `unknown`; each static
 /// obstacle, then each dynamic one, with its type, shape (a rectangle, a circle, or a polygon in its
 /// own frame), initial state and trajectory; each planning problem's initial state with every
 /// element the schema asks for (a slip angle of 0) and its goal, the time from its start to the last
 /// recorded step ("stay collision-free until then"; the reader ignores goals). What `scenario` does
-/// not hold is not written: no lanelet links, markings or types, no traffic rules, no place or tags.
+/// not hold is not written: no lanelet neighbours, markings or types, no traffic rules, no place or
+/// tags.
 /// Numbers are written in the shortest fixed-point form that reads back as the same double (the
 /// schema's `xs:decimal` has no exponent).
 ///
