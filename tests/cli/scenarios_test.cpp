@@ -377,8 +377,7 @@ TEST(cli_outputs, a_roundabout_run_written_as_a_commonroad_recording_has_the_rou
   const mm::commonroad::scenario recording = mm::commonroad::read_scenario(dir / "s2.xml");
   // The ring in pieces between its eight junctions, an entry and an exit per arm.
   ASSERT_EQ(recording.lanelets.size(), 4U * loaded.roundabout->arms.size());
-  // Linked both ways: each successor has the lanelet among its predecessors; every lanelet of the
-  // ring has two predecessors or successors where an arm joins it.
+  // Linked both ways: each successor has the lanelet among its predecessors.
   std::size_t links = 0;
   for (const mm::commonroad::lanelet& l : recording.lanelets) {
     for (const std::uint32_t next : l.successors) {
