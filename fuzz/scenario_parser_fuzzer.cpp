@@ -6,7 +6,6 @@
 // back bit for bit): a scenario that loads but cannot be written is a bug, and so is a roundabout
 // whose lanes cannot be drawn as a CommonRoad recording draws them. Any other exception, a
 // crash, a leak or a hang is a bug. Built by scripts/fuzz.sh (clang, -fsanitize=fuzzer,address,undefined).
-#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -15,7 +14,6 @@
 
 #include "mm/scenario_file/loader.hpp"
 #include "mm/scenario_file/writer.hpp"
-#include "mm/sim/roundabout.hpp"
 #include "mm/sim/simulation.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -26,12 +24,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)mm::scenario_file::scenario_text(loaded);
     if (loaded.roundabout) {
       // Its lanes as a CommonRoad recording writes them: finite, linked within the list.
-      const mm::scenario_file::roundabout_geometry& g = *loaded.roundabout;
-      std::vector<mm::sim::roundabout_arm> arms;
-      for (const auto& each : g.arms) arms.push_back(each.arm);
-      const double width = std::min(g.lane_width.value_or(mm::scenario_file::default_roundabout_lane_width),
-                                    0.5 * mm::sim::widest_lane(g.ring));
-      const std::vector<mm::sim::lane_edges> lanes = mm::sim::roundabout_lane_edges(g.ring, arms, width);
+      const std::vector<mm::sim::lane_edges> lanes = mm::scenario_file::lane_network(*loaded.roundabout);
       for (const mm::sim::lane_edges& lane : lanes) {
         if (lane.left.size() < 2 || lane.left.size() != lane.right.size()) __builtin_trap();
         for (const mm::vec2 p : lane.left) {

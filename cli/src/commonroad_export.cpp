@@ -103,14 +103,8 @@ mm::commonroad::scenario commonroad_recording::scenario() const {
     }
   }
   if (loaded_->roundabout) {
-    const mm::sim::roundabout& ring = loaded_->roundabout->ring;
-    std::vector<mm::sim::roundabout_arm> arms;
-    for (const scenario_file::named_arm& each : loaded_->roundabout->arms) arms.push_back(each.arm);
-    const double widest = mm::sim::widest_lane(ring);
-    double width = loaded_->roundabout->lane_width.value_or(scenario_file::default_roundabout_lane_width);
-    if (!(width < widest)) width = 0.5 * widest;
     const std::size_t first = s.lanelets.size();
-    const std::vector<mm::sim::lane_edges> lanes = mm::sim::roundabout_lane_edges(ring, arms, width);
+    const std::vector<mm::sim::lane_edges> lanes = scenario_file::lane_network(*loaded_->roundabout);
     for (const mm::sim::lane_edges& lane : lanes) {
       mm::commonroad::lanelet l;
       l.id = next_id++;

@@ -357,12 +357,6 @@ class mapper {
     }
   }
 
-  static std::vector<mm::sim::roundabout_arm> arms_of(const roundabout_geometry& g) {
-    std::vector<mm::sim::roundabout_arm> arms;
-    for (const named_arm& each : g.arms) arms.push_back(each.arm);
-    return arms;
-  }
-
   /// `drivable_area: {roundabout: true}` or `{roundabout: {lane_width_m: W}}`: the lanes of the file's
   /// roundabout, each W wide (3.5 m for `true`; `mm::sim::roundabout_lanes`).
   void read_roundabout_lanes(const field& f) {
@@ -943,6 +937,19 @@ class mapper {
 };
 
 }  // namespace
+
+std::vector<mm::sim::roundabout_arm> arms_of(const roundabout_geometry& g) {
+  std::vector<mm::sim::roundabout_arm> arms;
+  for (const named_arm& each : g.arms) arms.push_back(each.arm);
+  return arms;
+}
+
+std::vector<mm::sim::lane_edges> lane_network(const roundabout_geometry& g) {
+  const double widest = mm::sim::widest_lane(g.ring);
+  double width = g.lane_width.value_or(default_roundabout_lane_width);
+  if (!(width < widest)) width = 0.5 * widest;
+  return mm::sim::roundabout_lane_edges(g.ring, arms_of(g), width);
+}
 
 loaded_scenario load_text(std::string_view text, const std::string& source, const load_options& options) {
   YAML::Node root;

@@ -68,6 +68,15 @@ struct roundabout_geometry {
 /// true}`, `--on-roads`, the lanes of a CommonRoad recording).
 inline constexpr double default_roundabout_lane_width = 3.5;
 
+/// The arms of `g` without their names, in file order.
+std::vector<mm::sim::roundabout_arm> arms_of(const roundabout_geometry& g);
+
+/// The lanes of `g` as a lane network (`mm::sim::roundabout_lane_edges`), as a CommonRoad recording
+/// writes them: as wide as the scenario's drivable area has them, else
+/// `default_roundabout_lane_width`, or half the widest lane the ring can have where that is not
+/// narrower. Throws as `roundabout_lane_edges`.
+std::vector<mm::sim::lane_edges> lane_network(const roundabout_geometry& g);
+
 /// A road drawn under the agents; not used by the simulation.
 struct road {
   std::string name;
