@@ -55,13 +55,13 @@ void add_state(pugi::xml_node node, const state& x, bool velocity) {
 }
 
 /// A planning problem's initial state, whose elements the schema requires all of: position,
-/// velocity, orientation, yaw rate (0 when `x` has none), slip angle (0: not read), time, and the
-/// acceleration when `x` has one.
+/// velocity, orientation, yaw rate (`as_written` gives every one), slip angle (0: not read), time,
+/// and the acceleration when `x` has one.
 void add_initial_state(pugi::xml_node node, const state& x) {
   add_point(node.append_child("position"), x.position);
   add_exact(node, "velocity", decimal_text(x.velocity));
   add_exact(node, "orientation", decimal_text(x.orientation));
-  add_exact(node, "yawRate", decimal_text(x.yaw_rate.value_or(0.0)));
+  add_exact(node, "yawRate", decimal_text(*x.yaw_rate));
   add_exact(node, "slipAngle", "0.0");
   add_exact(node, "time", std::to_string(x.step));
   if (x.acceleration) add_exact(node, "acceleration", decimal_text(*x.acceleration));
@@ -109,18 +109,20 @@ scenario as_written(scenario s) {
   return s;
 }
 
-std::string scenario_xml(const scenario& s) {
+std::string scenario_xml(const scenario& given) {
+  if (!given.date.empty() && !is_date(given.date)) {
+    throw std::invalid_argument("scenario_xml: date '" + given.date + "': expected YYYY-MM-DD or none");
+  }
+  // Written in the form that reads back: its date, the schema's order of obstacles, and so on.
+  const scenario s = as_written(given);
   pugi::xml_document document;
   pugi::xml_node declaration = document.append_child(pugi::node_declaration);
   declaration.append_attribute("version") = "1.0";
   declaration.append_attribute("encoding") = "UTF-8";
   pugi::xml_node root = document.append_child("commonRoad");
-  if (!s.date.empty() && !is_date(s.date)) {
-    throw std::invalid_argument("scenario_xml: date '" + s.date + "': expected YYYY-MM-DD or none");
-  }
   root.append_attribute("commonRoadVersion") = "2020a";
   root.append_attribute("benchmarkID") = s.benchmark_id.c_str();
-  root.append_attribute("date") = (s.date.empty() ? std::string(undated) : s.date).c_str();
+  root.append_attribute("date") = s.date.c_str();
   root.append_attribute("author") = "maneuvermap";
   root.append_attribute("affiliation") = "";
   root.append_attribute("source") = "maneuvermap";
@@ -142,21 +144,17 @@ std::string scenario_xml(const scenario& s) {
     for (const std::uint32_t id : l.successors) node.append_child("successor").append_attribute("ref") = id;
     add_text(node, "laneletType", "unknown");
   }
-  // The schema's order: every static obstacle before the dynamic ones.
-  for (const obstacle_role role : {obstacle_role::static_obstacle, obstacle_role::dynamic_obstacle}) {
-    for (const obstacle& o : s.obstacles) {
-      if (o.role != role) continue;
-      const bool dynamic = o.role == obstacle_role::dynamic_obstacle;
-      pugi::xml_node node = root.append_child(dynamic ? "dynamicObstacle" : "staticObstacle");
-      node.append_attribute("id") = o.id;
-      add_text(node, "type", o.type);
-      add_shape(node, o.shape);
-      if (o.states.empty()) continue;  // the reader names it
-      add_state(node.append_child("initialState"), o.states.front(), dynamic);
-      if (o.states.size() > 1) {
-        pugi::xml_node trajectory = node.append_child("trajectory");
-        for (std::size_t k = 1; k < o.states.size(); ++k) add_state(trajectory.append_child("state"), o.states[k], dynamic);
-      }
+  for (const obstacle& o : s.obstacles) {
+    const bool dynamic = o.role == obstacle_role::dynamic_obstacle;
+    pugi::xml_node node = root.append_child(dynamic ? "dynamicObstacle" : "staticObstacle");
+    node.append_attribute("id") = o.id;
+    add_text(node, "type", o.type);
+    add_shape(node, o.shape);
+    if (o.states.empty()) continue;  // the reader names it
+    add_state(node.append_child("initialState"), o.states.front(), dynamic);
+    if (o.states.size() > 1) {
+      pugi::xml_node trajectory = node.append_child("trajectory");
+      for (std::size_t k = 1; k < o.states.size(); ++k) add_state(trajectory.append_child("state"), o.states[k], dynamic);
     }
   }
   const std::int64_t end = last_step(s);
@@ -171,15 +169,14 @@ std::string scenario_xml(const scenario& s) {
   std::ostringstream out;
   document.save(out, "  ", pugi::format_default, pugi::encoding_utf8);
   std::string text = out.str();
-  // The text must read back as `s` (bar its version): the reader's checks are the contract.
+  // The text must read back as `s`: the reader's checks are the contract.
   scenario back;
   try {
     back = read_scenario_text(text, "scenario_xml(" + s.benchmark_id + ")");
   } catch (const read_error& e) {
     throw std::invalid_argument(std::string("scenario_xml: the scenario is not one a CommonRoad file can state: ") + e.what());
   }
-  const scenario expected = as_written(s);
-  if (!(back == expected)) throw std::invalid_argument("scenario_xml: the scenario does not read back as itself");
+  if (!(back == s)) throw std::invalid_argument("scenario_xml: the scenario does not read back as itself");
   return text;
 }
 
