@@ -131,7 +131,7 @@ struct reader {
       const std::string path = field.empty() ? name : field + "." + name;
       if (!seen.insert(name).second) fail(key, path, "duplicate key");
       if (!allowed.empty() && std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
-        fail(key, path, "unknown key" + suggestion(name, allowed));
+        fail(key, path, "unknown key" + sf::unknown_key_hint(name, allowed));
       }
       out.emplace_back(key, entry.second);
     }

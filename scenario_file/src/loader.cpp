@@ -1031,6 +1031,10 @@ std::string closest_name(std::string_view word, const std::vector<std::string>& 
   return closest(word, candidates);
 }
 
+std::string unknown_key_hint(std::string_view word, const std::vector<std::string>& candidates) {
+  return detail::unknown_name_hint(word, candidates);
+}
+
 std::optional<std::pair<std::string, double>> parse_override(std::string_view text) {
   const std::size_t eq = text.find('=');
   if (eq == std::string_view::npos || eq == 0) return std::nullopt;

@@ -92,6 +92,39 @@ std::string closest(std::string_view word, const std::vector<std::string>& candi
   return best_distance <= allowed ? best : std::string();
 }
 
+std::string unknown_name_hint(std::string_view word, const std::vector<std::string>& candidates) {
+  if (candidates.empty()) return {};
+  if (std::string typo = closest(word, candidates); !typo.empty()) return "; did you mean " + typo + "?";
+  const auto words_of = [](std::string_view name) {
+    std::vector<std::string_view> parts;
+    for (std::size_t start = 0; start <= name.size();) {
+      const std::size_t end = std::min(name.find('_', start), name.size());
+      if (end > start) parts.push_back(name.substr(start, end - start));
+      start = end + 1;
+    }
+    return parts;
+  };
+  const std::vector<std::string_view> wanted = words_of(word);
+  std::vector<std::string> containing;
+  for (const std::string& c : candidates) {
+    const std::vector<std::string_view> have = words_of(c);
+    const bool all = !wanted.empty() && std::all_of(wanted.begin(), wanted.end(), [&](std::string_view w) {
+      return std::find(have.begin(), have.end(), w) != have.end();
+    });
+    if (all) containing.push_back(c);
+  }
+  if (!containing.empty() && containing.size() <= 3) {
+    std::string text = "; did you mean ";
+    for (std::size_t i = 0; i < containing.size(); ++i) {
+      text += (i == 0 ? "" : i + 1 == containing.size() ? " or " : ", ") + containing[i];
+    }
+    return text + "?";
+  }
+  std::string text = "; expected one of ";
+  for (std::size_t i = 0; i < candidates.size(); ++i) text += (i == 0 ? "" : ", ") + candidates[i];
+  return text;
+}
+
 std::string shown(const context& ctx, const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "<nothing>";
   if (node.IsMap()) return "<a map>";
@@ -287,9 +320,7 @@ const map_view& map_view::allow(const std::vector<std::string>& keys) const {
       const std::string key = key_text(*ctx_, layer, entry.first);
       if (!seen.insert(key).second) ctx_->fail(entry.first, join(layer.path, key), "duplicate key");
       if (std::find(keys.begin(), keys.end(), key) != keys.end()) continue;
-      const std::string hint = closest(key, keys);
-      ctx_->fail(entry.first, join(layer.path, key),
-                 "unknown key" + (hint.empty() ? std::string() : "; did you mean " + hint + "?"));
+      ctx_->fail(entry.first, join(layer.path, key), "unknown key" + unknown_name_hint(key, keys));
     }
   }
   return *this;

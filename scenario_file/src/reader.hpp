@@ -76,6 +76,12 @@ struct field {
 /// The closest of `candidates` to `word` when it is a plausible typo of it, else "".
 std::string closest(std::string_view word, const std::vector<std::string>& candidates);
 
+/// What a message about the unknown name `word` adds: "; did you mean X?" for a plausible typo of
+/// one of `candidates`, else "; did you mean A or B?" for the (at most three) candidates that have
+/// every one of its `_`-separated words (`speed_kmh`: `initial_speed_kmh`, `desired_speed_kmh`), else
+/// "; expected one of " and every candidate. "" when there are none.
+std::string unknown_name_hint(std::string_view word, const std::vector<std::string>& candidates);
+
 /// How a node is shown in messages: the scalar as written, `$p (= 40)` for references, or a
 /// description of a map, list or nothing.
 std::string shown(const context& ctx, const YAML::Node& node);

@@ -192,6 +192,9 @@ TEST(sweep_file, built_in_sweeps_load_with_their_grids) {
 
 TEST(sweep_file, unknown_duplicate_and_missing_keys_are_located_errors) {
   expect_error("policys: [adj]\n", 4, {"small.yaml:4:1: policys: unknown key; did you mean policies?"});
+  expect_error("colour: red\n", 4,
+               {"small.yaml:4:1: colour: unknown key; expected one of format, name, description, scenario, agent, "
+                "parameters, policies, repetitions, seed, keep_runs"});
   expect_error("seed: 1\nseed: 2\n", 5, {"seed: duplicate key"});
   try {
     load_sweep_text("format: maneuvermap-sweep/1\nname: x\n", "small.yaml", data_dir);

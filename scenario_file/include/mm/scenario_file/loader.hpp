@@ -153,6 +153,12 @@ std::string policy_name(const mm::forecast_policy& policy);
 /// mean ...?" of messages; also used by the sweep files of the command line).
 std::string closest_name(std::string_view word, const std::vector<std::string>& candidates);
 
+/// What an "unknown key" message adds: "; did you mean X?" for a plausible typo of one of
+/// `candidates`, else the (at most three) candidates that have every `_`-separated word of `word`
+/// (`speed_kmh`: "; did you mean desired_speed_kmh or initial_speed_kmh?"), else "; expected one of "
+/// and every candidate, in their order. Used by the scenario files and the sweep files.
+std::string unknown_key_hint(std::string_view word, const std::vector<std::string>& candidates);
+
 /// Parses `NAME=VALUE` of `--set`; none if malformed (no '=', empty name, VALUE not a finite number).
 std::optional<std::pair<std::string, double>> parse_override(std::string_view text);
 
