@@ -71,7 +71,10 @@ void bind_commonroad(py::module_& m) {
   py::register_exception<cr::read_error>(m, "read_error", PyExc_ValueError);
   py::register_exception<cr::measure_error>(m, "measure_error", PyExc_ValueError);
 
-  py::class_<cr::state>(m, "state", "One recorded state of a road user.")
+  py::class_<cr::state> state_type(m, "state", "One recorded state of a road user.");
+  pickled_by_members(state_type, &cr::state::step, &cr::state::position, &cr::state::orientation, &cr::state::velocity,
+                     &cr::state::yaw_rate, &cr::state::acceleration);
+  state_type
       .def_readonly("step", &cr::state::step, "time step k; the time is k·time_step [s]")
       .def_readonly("position", &cr::state::position, "centre of the shape [m]")
       .def_readonly("orientation", &cr::state::orientation, "[rad], as in the file")
@@ -82,7 +85,10 @@ void bind_commonroad(py::module_& m) {
   py::enum_<cr::obstacle_role>(m, "obstacle_role")
       .value("dynamic_obstacle", cr::obstacle_role::dynamic_obstacle)
       .value("static_obstacle", cr::obstacle_role::static_obstacle);
-  py::class_<cr::obstacle>(m, "obstacle", "A road user or static obstacle of the file.")
+  py::class_<cr::obstacle> obstacle_type(m, "obstacle", "A road user or static obstacle of the file.");
+  pickled_by_members(obstacle_type, &cr::obstacle::id, &cr::obstacle::role, &cr::obstacle::type, &cr::obstacle::shape,
+                     &cr::obstacle::states);
+  obstacle_type
       .def_readonly("id", &cr::obstacle::id)
       .def_readonly("role", &cr::obstacle::role)
       .def_readonly("type", &cr::obstacle::type, "car, truck, bus, bicycle, pedestrian, …")
@@ -108,7 +114,10 @@ void bind_commonroad(py::module_& m) {
         return "obstacle(id=" + std::to_string(o.id) + ", type=" + py::repr(py::str(o.type)).cast<std::string>() +
                ", " + std::to_string(o.states.size()) + " states)";
       });
-  py::class_<cr::lanelet>(m, "lanelet", "A lane: its two bounds, in the driving direction, and its links.")
+  py::class_<cr::lanelet> lanelet_type(m, "lanelet", "A lane: its two bounds, in the driving direction, and its links.");
+  pickled_by_members(lanelet_type, &cr::lanelet::id, &cr::lanelet::left_bound, &cr::lanelet::right_bound,
+                     &cr::lanelet::predecessors, &cr::lanelet::successors);
+  lanelet_type
       .def_readonly("id", &cr::lanelet::id)
       .def_property_readonly("left_bound", [](const cr::lanelet& l) { return points_of(l.left_bound); },
                              "[m], shape (points, 2)")
@@ -117,11 +126,22 @@ void bind_commonroad(py::module_& m) {
       .def_readonly("predecessors", &cr::lanelet::predecessors, "ids of the lanelets it continues")
       .def_readonly("successors", &cr::lanelet::successors, "ids of the lanelets that continue it")
       .def("__repr__", [](const cr::lanelet& l) { return "lanelet(id=" + std::to_string(l.id) + ")"; });
-  py::class_<cr::planning_problem>(m, "planning_problem", "The start of an ego task of the file.")
+  py::class_<cr::planning_problem> problem_type(m, "planning_problem", "The start of an ego task of the file.");
+  pickled_by_members(problem_type, &cr::planning_problem::id, &cr::planning_problem::initial);
+  problem_type
       .def_readonly("id", &cr::planning_problem::id)
       .def_readonly("initial", &cr::planning_problem::initial)
       .def("__repr__", [](py::handle self) { return fields_repr(self); });
-  py::class_<cr::scenario>(m, "scenario", "What a CommonRoad file holds, as far as measuring needs it.")
+  py::class_<cr::scenario> scenario_type(m, "scenario",
+                                         "What a CommonRoad file holds, as far as measuring needs it; pickles by its "
+                                         "values (for a process pool), and == compares them all.");
+  pickled_by_members(scenario_type, &cr::scenario::benchmark_id, &cr::scenario::version, &cr::scenario::date,
+                     &cr::scenario::time_step, &cr::scenario::lanelets, &cr::scenario::obstacles,
+                     &cr::scenario::planning_problems);
+  scenario_type
+      .def("__eq__", [](const cr::scenario& a, py::handle b) {
+        return py::isinstance<cr::scenario>(b) && a == b.cast<const cr::scenario&>();
+      })
       .def_readonly("benchmark_id", &cr::scenario::benchmark_id)
       .def_readonly("version", &cr::scenario::version, "2018b or 2020a")
       .def_readonly("date", &cr::scenario::date, "the file's date, YYYY-MM-DD, or empty")
@@ -139,6 +159,7 @@ void bind_commonroad(py::module_& m) {
         return "scenario(benchmark_id=" + py::repr(py::str(s.benchmark_id)).cast<std::string>() + ", " +
                std::to_string(s.obstacles.size()) + " obstacles)";
       });
+  scenario_type.attr("__hash__") = py::none();
 
   m.def("read_scenario", [](const std::filesystem::path& file) { return cr::read_scenario(file); }, py::arg("file"),
         py::call_guard<py::gil_scoped_release>(),

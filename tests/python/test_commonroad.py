@@ -1,4 +1,6 @@
 """CommonRoad recordings from Python: read, measure, and the same room as the planner (docs/python.md)."""
+import concurrent.futures
+import multiprocessing
 import pickle
 import subprocess
 import sys
@@ -61,6 +63,23 @@ def test_a_measurement_pickles_with_every_attribute(source_dir):
     measured = mm.commonroad.measure(s, car)
     assert measured.agent != 0 and measured.steps[-1].step > 0 and measured.steps[-1].obstacle_ids
     assert_same_attributes(measured, pickle.loads(pickle.dumps(measured)), "measurement")
+
+
+def measure_in_worker(s, agent):
+    """What a worker process returns: the rooms of a measurement."""
+    return mm.commonroad.measure(s, agent).rooms
+
+
+def test_a_read_scenario_pickles_whole_and_measures_the_same_in_another_process(source_dir):
+    s = mm.commonroad.read_scenario(source_dir / PEDESTRIAN_COLLISION)
+    copy = pickle.loads(pickle.dumps(s))
+    assert copy == s and copy != mm.commonroad.read_scenario(source_dir / "data/commonroad/USA_Lanker-1_1_T-1.xml")
+    assert_same_attributes(s, copy, "scenario")
+    car = mm.commonroad.recorded_ego(s, s.planning_problems[0])
+    assert car is not None
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        rooms = pool.submit(measure_in_worker, s, car).result()
+    assert rooms.tobytes() == mm.commonroad.measure(s, car).rooms.tobytes()
 
 
 def test_bad_files_and_unknown_road_users_raise_value_errors_that_say_where(source_dir):
