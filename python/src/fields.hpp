@@ -45,8 +45,7 @@ py::class_<T, Options...>& with_keyword_constructor(py::class_<T, Options...>& c
 }
 
 /// `with_keyword_constructor`, and `__repr__` and `__eq__` by fields (values compare equal when
-/// every field does). For the value types that hold a path (the scenario's agents), which do not
-/// pickle.
+/// every field does); `with_fields` adds pickling.
 template <class T, class... Options>
 py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
   with_keyword_constructor(c);
@@ -63,8 +62,9 @@ py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
 }
 
 /// Gives a bound type `__copy__` and `__deepcopy__` by its C++ copy (a deep copy: the C++ value owns
-/// everything it holds), for the types that do not pickle (a scenario, its agents and paths), so that
-/// `copy.deepcopy(loaded)` makes a variant to change while the original stays as it was.
+/// everything it holds) instead of a pickled round trip, for a scenario, its agents and paths, so that
+/// `copy.deepcopy(loaded)` makes a variant to change while the original stays as it was (and a
+/// loaded scenario, which does not pickle, copies too).
 template <class T, class... Options>
 py::class_<T, Options...>& copied_by_value(py::class_<T, Options...>& c) {
   c.def("__copy__", [](const T& self) { return T(self); });

@@ -109,6 +109,30 @@ void bind_path(py::module_& m) {
       });
   p.attr("__hash__") = py::none();
   copied_by_value(p);
+  // Pickled as the steps that rebuild it bit for bit (sim::steps_of), as a scenario file writes it.
+  p.def(py::pickle(
+      [](const sim::path& path) {
+        const sim::path_steps built = sim::steps_of(path);
+        py::list steps;
+        for (const sim::path_step& step : built.steps) {
+          steps.append(py::make_tuple(static_cast<int>(step.operation), step.length, step.curvature, step.point));
+        }
+        return py::make_tuple(built.start, steps);
+      },
+      [](const py::tuple& state) {
+        if (state.size() != 2) throw std::runtime_error("cannot unpickle a path: expected (start, steps)");
+        sim::path_steps built{state[0].cast<pose>(), {}};
+        for (const py::handle item : state[1].cast<py::list>()) {
+          const auto step = item.cast<py::tuple>();
+          const int operation = step[0].cast<int>();
+          if (step.size() != 4 || operation < 0 || operation > 2) {
+            throw std::runtime_error("cannot unpickle a path: expected steps (operation 0 to 2, length, curvature, point)");
+          }
+          built.steps.push_back({static_cast<sim::path_step::kind>(operation), step[1].cast<double>(),
+                                 step[2].cast<double>(), step[3].cast<vec2>()});
+        }
+        return sim::path_of(built);
+      }));
 }
 
 void bind_motions(py::module_& m) {
@@ -132,7 +156,7 @@ void bind_motions(py::module_& m) {
 
   py::class_<sim::scripted_motion> motion(
       m, "scripted_motion", "The motion of a scripted agent: along its path exactly, at its speed profile.");
-  copied_by_value(with_keyword_fields(motion))
+  copied_by_value(with_fields(motion))
       .def_readwrite("path", &sim::scripted_motion::path)
       .def_readwrite("start_time", &sim::scripted_motion::start_time, "[s], ≥ 0")
       .def_readwrite("start_arc_length", &sim::scripted_motion::start_arc_length, "s0 [m], 0 ≤ s0 < path length")
@@ -182,7 +206,7 @@ void bind_motions(py::module_& m) {
 void bind_agents(py::module_& m) {
   py::class_<sim::planning_vehicle> planning(
       m, "planning_vehicle", "A vehicle that follows its path and avoids the others with the planner.");
-  copied_by_value(with_keyword_fields(planning))
+  copied_by_value(with_fields(planning))
       .def_readwrite("name", &sim::planning_vehicle::name)
       .def_readwrite("path", &sim::planning_vehicle::path, "its reference path")
       .def_readwrite("start_arc_length", &sim::planning_vehicle::start_arc_length, "s0 [m]")
@@ -206,7 +230,7 @@ void bind_agents(py::module_& m) {
 
   py::class_<sim::scripted_vehicle> scripted(
       m, "scripted_vehicle", "A vehicle that replays its motion, ignoring the others unless it follows (the paper's B).");
-  copied_by_value(with_keyword_fields(scripted))
+  copied_by_value(with_fields(scripted))
       .def_readwrite("name", &sim::scripted_vehicle::name)
       .def_readwrite("motion", &sim::scripted_vehicle::motion)
       .def_readwrite("shape", &sim::scripted_vehicle::shape, "[m]")
@@ -214,14 +238,14 @@ void bind_agents(py::module_& m) {
   agent_list<sim::scripted_vehicle>(m, "scripted_vehicle_list");
 
   py::class_<sim::pedestrian> walker(m, "pedestrian", "A pedestrian that replays its motion (a disc).");
-  copied_by_value(with_keyword_fields(walker))
+  copied_by_value(with_fields(walker))
       .def_readwrite("name", &sim::pedestrian::name)
       .def_readwrite("motion", &sim::pedestrian::motion)
       .def_readwrite("radius", &sim::pedestrian::radius, "[m]");
   agent_list<sim::pedestrian>(m, "pedestrian_list");
 
   py::class_<sim::static_obstacle> still(m, "static_obstacle", "A convex polygon that never moves.");
-  copied_by_value(with_keyword_fields(still))
+  copied_by_value(with_fields(still))
       .def_readwrite("name", &sim::static_obstacle::name)
       .def_readwrite("vertices", &sim::static_obstacle::vertices, "world frame [m], 3 to 16, either orientation");
   agent_list<sim::static_obstacle>(m, "static_obstacle_list");

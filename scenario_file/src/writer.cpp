@@ -90,47 +90,39 @@ std::string_view policy_kind_name(mm::forecast_policy_kind kind) {
   return "adj";
 }
 
-/// The segments of `p` as the operations that rebuild it bit for bit from its first segment's
-/// start pose: `curve` for an arc, `straight_m` for a straight piece that continues the end pose,
-/// `line_to_m` for one that turns a corner (a polyline's, whose end is the next piece's start).
+/// A path as the steps that rebuild it bit for bit (`mm::sim::steps_of`): its first segment's start
+/// pose, then `curve`, `straight_m` or `line_to_m` per segment.
 void write_path(document& doc, const path& p) {
-  const std::span<const mm::sim::path_segment> segments = p.segments();
-  path rebuilt(segments.front().start);
+  const mm::sim::path_steps built = mm::sim::steps_of(p);
   doc.begin_map();
   doc.key("start");
   doc.begin_flow_map();
   doc.key("position_m");
-  doc.point(segments.front().start.position);
-  doc.number("heading_rad", segments.front().start.heading);
+  doc.point(built.start.position);
+  doc.number("heading_rad", built.start.heading);
   doc.end_map();
   doc.key("segments");
   doc.begin_list();
-  for (std::size_t i = 0; i < segments.size(); ++i) {
-    const mm::sim::path_segment& seg = segments[i];
-    const mm::pose end = i + 1 < segments.size() ? segments[i + 1].start : p.end_pose();
+  for (const mm::sim::path_step& step : built.steps) {
     doc.begin_flow_map();
-    if (seg.curvature != 0.0) {
-      rebuilt.curve(seg.length, seg.curvature);
-      doc.key("curve");
-      doc.begin_flow_map();
-      doc.number("length_m", seg.length);
-      doc.number("curvature_per_m", seg.curvature);
-      doc.end_map();
-    } else if (const path alone = path(rebuilt.end_pose()).straight(seg.length);  // what straight_m would add
-               alone.segments().front().start == seg.start && seg.start_arc_length == rebuilt.length() &&
-               alone.end_pose().position == end.position) {
-      rebuilt.straight(seg.length);
-      doc.number("straight_m", seg.length);
-    } else {
-      rebuilt.line_to(end.position);
-      doc.key("line_to_m");
-      doc.point(end.position);
+    switch (step.operation) {
+      case mm::sim::path_step::kind::curve:
+        doc.key("curve");
+        doc.begin_flow_map();
+        doc.number("length_m", step.length);
+        doc.number("curvature_per_m", step.curvature);
+        doc.end_map();
+        break;
+      case mm::sim::path_step::kind::straight: doc.number("straight_m", step.length); break;
+      case mm::sim::path_step::kind::line_to:
+        doc.key("line_to_m");
+        doc.point(step.point);
+        break;
     }
     doc.end_map();
   }
   doc.end_list();
   doc.end_map();
-  if (!(rebuilt == p)) throw std::logic_error("scenario_text: a path that its segments do not rebuild bit for bit");
 }
 
 void write_footprint(document& doc, const mm::rectangle& r) {

@@ -203,4 +203,42 @@ path_projection path::project_within(vec2 point, double lo, double hi) const {
   return result;
 }
 
+path_steps steps_of(const path& p) {
+  const std::span<const path_segment> segments = p.segments();
+  path_steps out{segments.empty() ? p.end_pose() : segments.front().start, {}};
+  path rebuilt(out.start);
+  for (std::size_t i = 0; i < segments.size(); ++i) {
+    const path_segment& seg = segments[i];
+    const mm::pose end = i + 1 < segments.size() ? segments[i + 1].start : p.end_pose();
+    path_step step;
+    if (seg.curvature != 0.0) {
+      step = {path_step::kind::curve, seg.length, seg.curvature, {}};
+      rebuilt.curve(seg.length, seg.curvature);
+    } else if (const path alone = path(rebuilt.end_pose()).straight(seg.length);  // what straight adds
+               alone.segments().front().start == seg.start && seg.start_arc_length == rebuilt.length() &&
+               alone.end_pose().position == end.position) {
+      step = {path_step::kind::straight, seg.length, 0.0, {}};
+      rebuilt.straight(seg.length);
+    } else {
+      step = {path_step::kind::line_to, 0.0, 0.0, end.position};
+      rebuilt.line_to(end.position);
+    }
+    out.steps.push_back(step);
+  }
+  if (!(rebuilt == p)) throw std::logic_error("path: its segments are not rebuilt bit for bit by curve, straight and line_to");
+  return out;
+}
+
+path path_of(const path_steps& steps) {
+  path p(steps.start);
+  for (const path_step& step : steps.steps) {
+    switch (step.operation) {
+      case path_step::kind::curve: p.curve(step.length, step.curvature); break;
+      case path_step::kind::straight: p.straight(step.length); break;
+      case path_step::kind::line_to: p.line_to(step.point); break;
+    }
+  }
+  return p;
+}
+
 }  // namespace mm::sim

@@ -464,6 +464,30 @@ def test_a_scenario_no_file_can_state_is_refused_and_agent_lists_compare_and_sea
     assert built.scripted_vehicles == [] and built.scripted_vehicles != 3
 
 
+def agent_name_in_worker(agent):
+    """A worker process that receives one agent: its name and path length."""
+    return agent.name, agent.path.length if hasattr(agent, "path") else agent.motion.path.length
+
+
+def test_agents_and_paths_pickle_by_their_values_bit_for_bit(source_dir):
+    path = mm.sim.path(mm.pose((1.0, 2.0), 0.3)).straight(20.0).turn(15.0, math.pi / 2).line_to((0.0, 50.0))
+    path.curve(3.0, -0.1)
+    for p in (path, mm.sim.path(), mm.sim.path(mm.pose((4.0, 5.0), 1.0)), mm.sim.path.polyline([(0, 0), (3, 4), (3, 9)]),
+              mm.sim.path.circular_arc((0.0, 0.0), 25.0, -0.5, 7.0)):
+        again = pickle.loads(pickle.dumps(p))
+        assert again == p and again.end_pose == p.end_pose and again.length == p.length
+    built = s1_crossing_built_in_python()
+    built.scripted_vehicles[0].shape = mm.rectangle(4.5, 0.01)  # no file states it, yet the agent pickles
+    agents = [*built.planning_vehicles, *built.scripted_vehicles, *mm.sim.load("s7-crosswalk-crowd").scenario.pedestrians,
+              *mm.sim.load(source_dir / "examples" / "scenarios" / "s1-crossing-kerbs.yaml").scenario.static_obstacles]
+    assert {type(a).__name__ for a in agents} == {"planning_vehicle", "scripted_vehicle", "pedestrian", "static_obstacle"}
+    for agent in agents:
+        assert pickle.loads(pickle.dumps(agent)) == agent, agent.name
+    moving = [a for a in agents if not isinstance(a, mm.sim.static_obstacle)]
+    with concurrent.futures.ProcessPoolExecutor(1, mp_context=multiprocessing.get_context("spawn")) as pool:
+        assert list(pool.map(agent_name_in_worker, moving)) == [agent_name_in_worker(a) for a in moving]
+
+
 def test_files_that_cannot_be_written_raise_os_errors_with_the_path(tmp_path):
     (tmp_path / "a-file").write_text("")
     blocked = tmp_path / "a-file" / "below"  # under a file: not a directory

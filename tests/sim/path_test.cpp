@@ -4,8 +4,11 @@
 
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 #include <vector>
+
+#include "property.hpp"
 
 namespace {
 
@@ -138,6 +141,43 @@ TEST(sim_path, invalid_pieces_are_rejected) {
   const std::vector<vec2> one{{1.0, 1.0}};
   EXPECT_THROW(path::polyline(one), std::invalid_argument);
   EXPECT_TRUE(path().empty());
+}
+
+TEST(sim_path, the_steps_of_a_path_rebuild_it_bit_for_bit) {
+  // Random paths of every operation, polylines and arcs of several laps.
+  std::mt19937_64 rng(mm::testing::property_seed() + 7);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial) {
+    path p(mm::pose{{200.0 * unit(rng) - 100.0, 200.0 * unit(rng) - 100.0}, 8.0 * unit(rng) - 4.0});
+    const int pieces = 1 + trial % 6;
+    for (int k = 0; k < pieces; ++k) {
+      const double pick = unit(rng);
+      if (pick < 0.25) {
+        p.straight(0.01 + 50.0 * unit(rng));
+      } else if (pick < 0.5) {
+        p.turn(1.0 + 40.0 * unit(rng), (unit(rng) < 0.5 ? -1.0 : 1.0) * (0.01 + 7.0 * unit(rng)));
+      } else if (pick < 0.75) {
+        p.line_to(p.end_pose().position + vec2{30.0 * unit(rng) - 15.0, 30.0 * unit(rng) + 0.5});
+      } else {
+        p.curve(0.01 + 30.0 * unit(rng), 0.4 * unit(rng) - 0.2);
+      }
+    }
+    const mm::sim::path_steps steps = mm::sim::steps_of(p);
+    ASSERT_EQ(steps.steps.size(), p.segments().size());
+    ASSERT_TRUE(mm::sim::path_of(steps) == p) << "trial " << trial << " (seed " << mm::testing::property_seed() << ")";
+  }
+  const std::vector<vec2> corners{{0.0, 0.0}, {3.0, 4.0}, {3.0, 9.0}, {-2.0, 9.0}};
+  for (const path& p : {path::polyline(corners), path::circular_arc({5.0, 5.0}, 25.0, -0.5, 9.0), path(),
+                        path(mm::pose{{4.0, 5.0}, 1.0})}) {
+    EXPECT_TRUE(mm::sim::path_of(mm::sim::steps_of(p)) == p);
+  }
+  // A polyline's corners are line_to steps, a straight continuation a straight step.
+  const mm::sim::path_steps corner_steps = mm::sim::steps_of(path::polyline(corners));
+  EXPECT_EQ(corner_steps.steps[1].operation, mm::sim::path_step::kind::line_to);
+  EXPECT_EQ(corner_steps.steps[1].point, corners[2]);
+  const mm::sim::path_steps straight_steps = mm::sim::steps_of(path(mm::pose{}).straight(3.0).straight(4.0));
+  EXPECT_EQ(straight_steps.steps[1].operation, mm::sim::path_step::kind::straight);
+  EXPECT_EQ(straight_steps.steps[1].length, 4.0);
 }
 
 }  // namespace

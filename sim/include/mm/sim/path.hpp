@@ -1,6 +1,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <vector>
@@ -110,5 +111,34 @@ class path {
   std::vector<path_segment> segments_;
   mm::pose end_;
 };
+
+/// One operation that appends to a path: `curve(length, curvature)`, `straight(length)` or
+/// `line_to(point)`.
+struct path_step {
+  enum class kind : std::uint8_t { curve, straight, line_to };
+  kind operation = kind::straight;
+  double length = 0.0;     ///< [m] > 0, of `curve` and `straight`
+  double curvature = 0.0;  ///< κ [1/m], of `curve`
+  vec2 point;              ///< [m], of `line_to`
+
+  friend bool operator==(const path_step&, const path_step&) = default;
+};
+
+/// A path as the start pose and the operations that build it: `path(start)`, then each step.
+struct path_steps {
+  mm::pose start;
+  std::vector<path_step> steps;
+
+  friend bool operator==(const path_steps&, const path_steps&) = default;
+};
+
+/// The steps that rebuild `p` bit for bit (`path_of(steps_of(p)) == p`): `curve` for an arc,
+/// `straight` for a straight segment that continues the end pose, `line_to` for one that turns a
+/// corner (a polyline's). What the scenario writer writes and a pickled path holds. Throws
+/// `std::logic_error` should a path's segments not be rebuilt so (none built by `path`'s operations).
+path_steps steps_of(const path& p);
+
+/// `path(steps.start)` with every step appended; `std::invalid_argument` as those operations.
+path path_of(const path_steps& steps);
 
 }  // namespace mm::sim
