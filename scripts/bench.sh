@@ -7,7 +7,7 @@
 #      obstacles), the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time, and the whole 20 s of
 #      the roundabout s6 with 2 threads: its real-time factor with and without the maps
 #      (maneuvermap_bench --whole-roundabout) and its planning cost per simulated second (a run with
-#      --timing; the chart docs/figures/performance/s6-cost-per-second.png). Logs in out/bench/. About 12 minutes on the machine of docs/performance.md.
+#      --timing; the chart docs/figures/performance/s6-cost-per-second.png). Logs in out/bench/. About 10 to 12 minutes on the machines of docs/performance.md.
 #   bash scripts/bench.sh [--full]
 # Run it on an otherwise idle machine: the timings are wall-clock.
 set -euo pipefail
