@@ -29,7 +29,7 @@ def main() -> None:
     simulation = mm.sim.simulation(mm.sim.load(args.scenario), jobs=args.jobs, map_columns=False)
     robust = mm.forecast_policy.parse("robust")
     plans: collections.Counter[str] = collections.Counter()
-    seconds: collections.Counter[str] = collections.Counter()
+    seconds: collections.defaultdict[str, float] = collections.defaultdict(float)
     while not simulation.ended():
         simulation.step()
         if simulation.step_index % args.every != 0:
@@ -38,6 +38,8 @@ def main() -> None:
             if not simulation.planned_now(vehicle):
                 continue
             scene = simulation.planning_input(vehicle)
+            if scene is None:  # not present
+                continue
             scene.config.map_column = False
             start = time.perf_counter()
             as_planned = mm.plan(scene)
