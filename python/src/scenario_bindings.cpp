@@ -124,8 +124,8 @@ void bind_path(py::module_& m) {
         sim::path_steps built{state[0].cast<pose>(), {}};
         for (const py::handle item : state[1].cast<py::list>()) {
           const auto step = item.cast<py::tuple>();
-          const int operation = step[0].cast<int>();
-          if (step.size() != 4 || operation < 0 || operation > 2) {
+          const int operation = step.size() == 4 ? step[0].cast<int>() : -1;
+          if (operation < 0 || operation > 2) {
             throw std::runtime_error("cannot unpickle a path: expected steps (operation 0 to 2, length, curvature, point)");
           }
           built.steps.push_back({static_cast<sim::path_step::kind>(operation), step[1].cast<double>(),
