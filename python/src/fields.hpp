@@ -44,23 +44,6 @@ py::class_<T, Options...>& with_keyword_constructor(py::class_<T, Options...>& c
   return c;
 }
 
-/// `with_keyword_constructor`, and `__repr__` and `__eq__` by fields (values compare equal when
-/// every field does); `with_fields` adds pickling.
-template <class T, class... Options>
-py::class_<T, Options...>& with_keyword_fields(py::class_<T, Options...>& c) {
-  with_keyword_constructor(c);
-  c.def("__repr__", [](py::handle self) { return fields_repr(self, true); });
-  c.def("__eq__", [](py::handle self, py::handle other) {
-    if (!py::isinstance(other, py::type::of(self))) return false;
-    for (const std::string& name : field_names(py::type::of(self), true)) {
-      if (!self.attr(name.c_str()).equal(other.attr(name.c_str()))) return false;
-    }
-    return true;
-  });
-  c.attr("__hash__") = py::none();
-  return c;
-}
-
 /// Gives a bound type `__copy__` and `__deepcopy__` by its C++ copy (a deep copy: the C++ value owns
 /// everything it holds) instead of a pickled round trip, for a scenario, its agents and paths, so that
 /// `copy.deepcopy(loaded)` makes a variant to change while the original stays as it was (and a
@@ -72,11 +55,21 @@ py::class_<T, Options...>& copied_by_value(py::class_<T, Options...>& c) {
   return c;
 }
 
-/// `with_keyword_fields`, and pickling by fields (so that values can be sent to other processes:
+/// `with_keyword_constructor`, `__repr__` and `__eq__` by fields (values compare equal when every
+/// field does), and pickling by fields (so that values can be sent to other processes:
 /// `multiprocessing`, `concurrent.futures`).
 template <class T, class... Options>
 py::class_<T, Options...>& with_fields(py::class_<T, Options...>& c) {
-  with_keyword_fields(c);
+  with_keyword_constructor(c);
+  c.def("__repr__", [](py::handle self) { return fields_repr(self, true); });
+  c.def("__eq__", [](py::handle self, py::handle other) {
+    if (!py::isinstance(other, py::type::of(self))) return false;
+    for (const std::string& name : field_names(py::type::of(self), true)) {
+      if (!self.attr(name.c_str()).equal(other.attr(name.c_str()))) return false;
+    }
+    return true;
+  });
+  c.attr("__hash__") = py::none();
   c.def(py::pickle(
       [](py::handle self) {
         py::dict state;
