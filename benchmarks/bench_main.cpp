@@ -5,8 +5,9 @@
 //
 //   build/release/benchmarks/maneuvermap_bench [--whole-roundabout] [Google Benchmark flags]
 //
-// --whole-roundabout adds the roundabout's whole 20 s with two threads, once with the maps and once
-// without (about two minutes each on the machine of docs/performance.md).
+// --whole-roundabout adds the roundabout's whole 20 s with two threads, once with the maps, once
+// without, and once with only what the commands need (`run_options::decision_only`, as a sweep's
+// runs; about two minutes each on the machine of docs/performance.md).
 //
 // Each case runs several repetitions and reports their median and their maximum; `worst_us`
 // is the slowest single call seen in a repetition. The roundabout's `min` row holds the slowest
@@ -206,17 +207,10 @@ void table1_cell(benchmark::State& state) {
   });
 }
 
-/// The many-agent scenario (s6-busy-roundabout: 50 planning vehicles) for its first
-/// `state.range(1)` simulated seconds with `state.range(0)` planning threads, recording every
-/// vehicle's Maneuverability Map when `state.range(2)` is 1 (what `maneuvermap run` writes) or
-/// only the decisions when 0 (`run_options::map_columns`, what a sweep's runs do: the same run,
-/// bit for bit); reports the real-time factor (simulated time over wall time) at its 100 Hz step.
-void busy_roundabout(benchmark::State& state) {
+/// The scenario s6-busy-roundabout for its first `seconds` with `options`, timed.
+void time_busy_roundabout(benchmark::State& state, double seconds, const mm::sim::run_options& options) {
   mm::scenario_file::loaded_scenario loaded = mm::scenario_file::load("s6-busy-roundabout");
-  loaded.scenario.duration = static_cast<double>(state.range(1));
-  mm::sim::run_options options;
-  options.jobs = static_cast<std::size_t>(state.range(0));
-  options.map_columns = state.range(2) != 0;
+  loaded.scenario.duration = seconds;
   double simulated = 0.0;
   double wall = 0.0;
   for (auto _ : state) {
@@ -227,6 +221,29 @@ void busy_roundabout(benchmark::State& state) {
     simulated += sim.time();
   }
   state.counters["real_time_factor"] = simulated / wall;
+}
+
+/// The many-agent scenario (s6-busy-roundabout: 50 planning vehicles) for its first
+/// `state.range(1)` simulated seconds with `state.range(0)` planning threads, recording every
+/// vehicle's Maneuverability Map when `state.range(2)` is 1 (what `maneuvermap run` writes) or
+/// only the decisions when 0 (`run_options::map_columns`, what a sweep's runs do: the same run,
+/// bit for bit); reports the real-time factor (simulated time over wall time) at its 100 Hz step.
+void busy_roundabout(benchmark::State& state) {
+  mm::sim::run_options options;
+  options.jobs = static_cast<std::size_t>(state.range(0));
+  options.map_columns = state.range(2) != 0;
+  time_busy_roundabout(state, static_cast<double>(state.range(1)), options);
+}
+
+/// As `busy_roundabout` without the maps, and with `run_options::decision_only` (what a sweep's runs
+/// do since 2026-12-07: the same run, bit for bit): a step whose nominal maneuver is proven safe
+/// under every forecast time computes no index.
+void busy_roundabout_decision_only(benchmark::State& state) {
+  mm::sim::run_options options;
+  options.jobs = static_cast<std::size_t>(state.range(0));
+  options.map_columns = false;
+  options.decision_only = true;
+  time_busy_roundabout(state, static_cast<double>(state.range(1)), options);
 }
 
 /// `repetitions` repetitions, reported as their mean, median, spread and slowest (`max`) only.
@@ -301,6 +318,12 @@ void register_all(bool whole_roundabout) {
         ->ArgNames({"jobs", "seconds", "maps"})
         ->Args({2, 20, 1})
         ->Args({2, 20, 0})
+        ->Unit(benchmark::kMillisecond)
+        ->UseRealTime()
+        ->Iterations(1);
+    benchmark::RegisterBenchmark("sim/busy_roundabout_decision_only", busy_roundabout_decision_only)
+        ->ArgNames({"jobs", "seconds"})
+        ->Args({2, 20})
         ->Unit(benchmark::kMillisecond)
         ->UseRealTime()
         ->Iterations(1);

@@ -191,9 +191,11 @@ sweep_result run_one(const sweep_spec& spec, const sweep_run& run, const std::fi
       settings.out_dir = runs_dir / run.run_dir;
       metrics = run_scenario(loaded, settings).metrics;
     } else {
-      // Nobody reads this run's maps: the planner evaluates only what the decisions need.
+      // Nobody reads this run's maps or indices: the planner computes only what the commands need
+      // (the same commands, so the same metrics, bit for bit).
       mm::sim::run_options run_options;
       run_options.map_columns = false;
+      run_options.decision_only = true;
       mm::sim::simulation sim(loaded.scenario, run_options);
       mm::sim::run(sim);
       metrics = sim.all_metrics();

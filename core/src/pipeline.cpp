@@ -45,6 +45,11 @@ plan_result invalid(std::string error) {
   return result;
 }
 
+/// True when every forecast time is evaluated: for the map's column, the sets drawn, or the reference.
+bool whole_column_wanted(const planner_config& config, const pipeline_options& options) {
+  return config.map_column || config.record_samples || options.reference;
+}
+
 /// True when `u` is proven collision-free in continuous time (`verified_collision_free`, or its
 /// reference) with every obstacle under each of its forecast indices `candidates[j]` (sorted): one
 /// proof per forecast time, with the obstacles that may be forecast with it. A forecast that does
@@ -68,6 +73,46 @@ bool verified_under_every_forecast(const ego_state& ego, const maneuver& u, std:
         reference ? verified_collision_free_reference(ego, u, those, those_tau, window, verification_resolution, stepping)
                   : verified_collision_free(ego, u, those, those_tau, window, verification_resolution, stepping);
     if (!free) return false;
+  }
+  return true;
+}
+
+/// True when `u` is proven collision-free in continuous time (`verified_collision_free`, or its
+/// reference) with each obstacle alone, obstacle j forecast with `forecast_times[j]`: one proof per
+/// obstacle, each stepping by its own clearance rather than by the smallest of them all. As sound as
+/// the proof with all of them at once, and neither proves everything the other does (docs/method.md
+/// §4.5).
+bool verified_with_each(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
+                        std::span<const double> forecast_times, const collision_window& window, bool reference,
+                        proof_steps stepping) {
+  for (std::size_t j = 0; j < obstacles.size(); ++j) {
+    const auto one = obstacles.subspan(j, 1);
+    const auto tau = forecast_times.subspan(j, 1);
+    const bool free =
+        reference ? verified_collision_free_reference(ego, u, one, tau, window, verification_resolution, stepping)
+                  : verified_collision_free(ego, u, one, tau, window, verification_resolution, stepping);
+    if (!free) return false;
+  }
+  return true;
+}
+
+/// True when `u` is proven collision-free (`verified_with_each`) with each obstacle alone under
+/// each of its forecast indices `candidates[j]`: then `verified_with_each` proves it under every
+/// assignment of those forecast times. The obstacles are taken in `order`; one that does not turn
+/// (ω = 0) has the same forecast under every τ and is proven once, at τ = 0.
+bool verified_with_each_under_every_forecast(const ego_state& ego, const maneuver& u,
+                                             std::span<const forecast_obstacle> obstacles,
+                                             std::span<const std::vector<std::size_t>> candidates,
+                                             std::span<const double> taus, std::span<const std::size_t> order,
+                                             const collision_window& window, bool reference, proof_steps stepping) {
+  for (const std::size_t j : order) {
+    for (const std::size_t i : candidates[j]) {
+      if (i > 0 && obstacles[j].motion.yaw_rate == 0.0) break;
+      const double tau = taus[i];
+      if (!verified_with_each(ego, u, obstacles.subspan(j, 1), std::span(&tau, 1), window, reference, stepping)) {
+        return false;
+      }
+    }
   }
   return true;
 }
@@ -614,6 +659,50 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     return result;
   }
 
+  // TTC per obstacle (spec §6): obstacle j may be forecast with τ_i ≤ TTC_j (and always τ_0 = 0).
+  std::vector<double> ttc(n, no_collision);
+  for (std::size_t j = 0; j < n; ++j) {
+    ttc[j] = time_to_collision(ego, nominal, relevant[j], window);
+    result.obstacles[relevant_track[j]].time_to_collision = ttc[j];
+  }
+  result.time_to_collision = n == 0 ? no_collision : *std::min_element(ttc.begin(), ttc.end());
+  result.excluded = excluded_forecast_times(taus, result.time_to_collision);
+  assignment_problem problem;
+  for (std::size_t j = 0; j < n; ++j) {
+    std::vector<std::size_t> allowed;
+    allowed.reserve(tau_count);
+    for (std::size_t i = 0; i < tau_count; ++i) {
+      if (i == 0 || taus[i] <= ttc[j]) allowed.push_back(i);
+    }
+    problem.candidates.push_back(std::move(allowed));
+  }
+  // The obstacles by their TTC, the soonest first (ties in input order): the order in which u_nom is
+  // proven against each alone, where the first that fails ends the proof.
+  std::vector<std::size_t> by_urgency(n);
+  for (std::size_t j = 0; j < n; ++j) by_urgency[j] = j;
+  std::stable_sort(by_urgency.begin(), by_urgency.end(), [&](std::size_t x, std::size_t y) { return ttc[x] < ttc[y]; });
+  // A command must keep to the road over the whole of [0, T_h], not only at the sample times.
+  const auto on_road = [&](const maneuver& u) {
+    if (road == nullptr) return true;
+    return options.reference ? stays_on_drivable_area_reference(*road, ego, u, window, verification_resolution)
+                             : stays_on_drivable_area(*road, ego, u, window, verification_resolution);
+  };
+
+  if (config.decision_only && !whole_column_wanted(config, options) &&
+      options.assignment_search == assignment_search_kind::coordinate_ascent &&
+      verified_with_each_under_every_forecast(ego, nominal, relevant, problem.candidates, taus, by_urgency, window,
+                                              false, proof_steps::speed_bound) &&
+      on_road(nominal)) {
+    // u_nom is proven safe with each obstacle under each of its forecast times: rule 1 (spec §8) applies
+    // it under whatever assignment the indices would select (`nominal_free` proves it there), so the
+    // command and mode are those of the full step; no index is computed.
+    result.indices_computed = false;
+    result.command = nominal;
+    result.mode = planning_mode::nominal;
+    result.work.relevant_obstacles = n;
+    return result;
+  }
+
   // The fast indices read only the weights of the cells between nodes; the reference counts nodes,
   // and the end points are only drawn (`record_samples`).
   const bool full_samples = options.reference || config.record_samples;
@@ -641,23 +730,6 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   std::optional<clearance_field::raster_scratch> own_raster;
   clearance_field::raster_scratch& raster = reuse ? cache->raster : own_raster.emplace();
 
-  // TTC per obstacle (spec §6): obstacle j may be forecast with τ_i ≤ TTC_j (and always τ_0 = 0).
-  std::vector<double> ttc(n, no_collision);
-  for (std::size_t j = 0; j < n; ++j) {
-    ttc[j] = time_to_collision(ego, nominal, relevant[j], window);
-    result.obstacles[relevant_track[j]].time_to_collision = ttc[j];
-  }
-  result.time_to_collision = n == 0 ? no_collision : *std::min_element(ttc.begin(), ttc.end());
-  result.excluded = excluded_forecast_times(taus, result.time_to_collision);
-  assignment_problem problem;
-  for (std::size_t j = 0; j < n; ++j) {
-    std::vector<std::size_t> allowed;
-    allowed.reserve(tau_count);
-    for (std::size_t i = 0; i < tau_count; ++i) {
-      if (i == 0 || taus[i] <= ttc[j]) allowed.push_back(i);
-    }
-    problem.candidates.push_back(std::move(allowed));
-  }
   const bool constant_policy = config.policy.kind == forecast_policy_kind::constant;
   std::vector<std::size_t> assignment(n, 0);
   if (constant_policy) {
@@ -671,7 +743,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // Which forecast times are evaluated: every one for the map's column; otherwise only those the
   // decision reads — the constant policy's (capped at TTC), or every obstacle's candidates under
   // ADJ. Each evaluated set is the same, bit for bit, whichever others are evaluated.
-  const bool whole_column = config.map_column || config.record_samples || options.reference;
+  const bool whole_column = whole_column_wanted(config, options);
   std::vector<std::uint8_t> wanted;
   const auto wanted_of = [&](std::size_t j) -> std::span<const std::uint8_t> {
     if (whole_column) return {};
@@ -719,12 +791,6 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
       evaluate.add_road(*sweep, *road);
     }
   }
-  // A command must keep to the road over the whole of [0, T_h], not only at the sample times.
-  const auto on_road = [&](const maneuver& u) {
-    if (road == nullptr) return true;
-    return options.reference ? stays_on_drivable_area_reference(*road, ego, u, window, verification_resolution)
-                             : stays_on_drivable_area(*road, ego, u, window, verification_resolution);
-  };
 
   // The map column: every obstacle forecast with τ_i (spec §6). When no obstacle's clearances
   // depend on its forecast time (none turns, or those that do cannot come near), every τ_i gives
@@ -770,8 +836,8 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
   // clip between samples (docs/method.md §4.5). Proven by the speed bound first, which keeps a few
   // centimetres more than the margin from the forecasts; only when no candidate passes, again with
   // the translation bound, which proves passes down to the margin; nothing when neither does.
-  const auto choose = [&](const sample_mask& unsafe, family f,
-                          const std::function<bool(const maneuver&, proof_steps)>& verify) {
+  using verifier = std::function<bool(const maneuver&, proof_steps)>;
+  const auto choose = [&](const sample_mask& unsafe, family f, const verifier& verify, const verifier& verify_nominal) {
     choice_input choice;
     choice.samples = &samples;
     choice.colliding = &unsafe;
@@ -783,7 +849,7 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     std::optional<maneuver_decision> decision;
     for (const proof_steps stepping : {proof_steps::speed_bound, proof_steps::translation_bound}) {
       choice.verify = [&verify, stepping](const maneuver& u) { return verify(u, stepping); };
-      choice.nominal_safe = choice.verify(nominal);
+      choice.nominal_safe = verify_nominal(nominal, stepping);
       decision = choose_maneuver(choice);
       if (decision) break;
     }
@@ -809,11 +875,20 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     const sample_mask robust_colliding = evaluate.colliding(every);
     const maneuverability_pair mi = evaluate.indices(every);
     const family robust_family = select_family(mi.brake, mi.accelerate);
-    if (const auto decision = choose(robust_colliding, robust_family, [&](const maneuver& u, proof_steps stepping) {
-          return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference,
-                                               stepping) &&
-                 on_road(u);
-        })) {
+    const auto under_every_forecast = [&](const maneuver& u, proof_steps stepping) {
+      return verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference,
+                                           stepping) &&
+             on_road(u);
+    };
+    // u_nom also by each obstacle alone under each of its forecast times, as the shortcut below proves it.
+    const auto nominal_under_every_forecast = [&](const maneuver& u, proof_steps stepping) {
+      return (verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference,
+                                            stepping) ||
+              verified_with_each_under_every_forecast(ego, u, relevant, problem.candidates, taus, by_urgency, window,
+                                                      options.reference, stepping)) &&
+             on_road(u);
+    };
+    if (const auto decision = choose(robust_colliding, robust_family, under_every_forecast, nominal_under_every_forecast)) {
       robust_decided = true;
       colliding = robust_colliding;
       result.robust = true;
@@ -898,13 +973,21 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     // The maneuver (spec §8).
     std::vector<double> assigned_tau(n);
     for (std::size_t j = 0; j < n; ++j) assigned_tau[j] = taus[assignment[j]];
-    if (const auto decision = choose(colliding, result.selected_family, [&](const maneuver& u, proof_steps stepping) {
-          return (options.reference ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window,
-                                                                        verification_resolution, stepping)
-                                    : verified_collision_free(ego, u, relevant, assigned_tau, window,
-                                                              verification_resolution, stepping)) &&
-                 on_road(u);
-        })) {
+    const auto with_all = [&](const maneuver& u, proof_steps stepping) {
+      return options.reference ? verified_collision_free_reference(ego, u, relevant, assigned_tau, window,
+                                                                   verification_resolution, stepping)
+                               : verified_collision_free(ego, u, relevant, assigned_tau, window,
+                                                         verification_resolution, stepping);
+    };
+    const auto assigned_free = [&](const maneuver& u, proof_steps stepping) { return with_all(u, stepping) && on_road(u); };
+    // u_nom (rule 1) by the proof with all obstacles at once or by one with each alone: the second is
+    // what `decision_only` proves under every assignment, so that its shortcut decides as this does.
+    const auto nominal_free = [&](const maneuver& u, proof_steps stepping) {
+      return (with_all(u, stepping) ||
+              verified_with_each(ego, u, relevant, assigned_tau, window, options.reference, stepping)) &&
+             on_road(u);
+    };
+    if (const auto decision = choose(colliding, result.selected_family, assigned_free, nominal_free)) {
       result.command = decision->command;
       result.mode = decision->mode;
     } else {

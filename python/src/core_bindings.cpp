@@ -206,7 +206,10 @@ void bind_config(py::module_& m) {
       .def_readwrite("max_exhaustive_assignments", &planner_config::max_exhaustive_assignments)
       .def_readwrite("record_samples", &planner_config::record_samples, "fill plan_result.samples")
       .def_readwrite("map_column", &planner_config::map_column,
-                     "compute every forecast time's indices (False: only those the decision reads)");
+                     "compute every forecast time's indices (False: only those the decision reads)")
+      .def_readwrite("decision_only", &planner_config::decision_only,
+                     "without the map column: a step whose u_nom is proven safe under every forecast time returns "
+                     "it without any index (plan_result.indices_computed False); the same command");
   m.def("forecast_times", &forecast_times, py::arg("config"), "The forecast grid τ_i = i·Δτ [s] (spec §4).");
 
   py::class_<drivable_area, std::shared_ptr<drivable_area>> area(
@@ -366,7 +369,7 @@ void bind_result(py::module_& m) {
   pickled_by_members(pr, &plan_result::status, &plan_result::error, &plan_result::command, &plan_result::mode,
                      &plan_result::selected_family, &plan_result::forecast_time, &plan_result::forecast_index,
                      &plan_result::mi_brake_selected, &plan_result::mi_accelerate_selected, &plan_result::robust,
-                     &plan_result::on_drivable_area,
+                     &plan_result::on_drivable_area, &plan_result::indices_computed,
                      &plan_result::forecast_times, &plan_result::mi_brake, &plan_result::mi_accelerate,
                      &plan_result::excluded, &plan_result::time_to_collision, &plan_result::collision_time_step,
                      &plan_result::obstacles, &plan_result::samples, &plan_result::work);
@@ -379,6 +382,9 @@ void bind_result(py::module_& m) {
                     "robust policy: the command is safe under every non-excluded forecast time (else ADJ decided)")
       .def_readonly("on_drivable_area", &plan_result::on_drivable_area,
                     "the input's drivable area constrained this step (given, and the ego started on it)")
+      .def_readonly("indices_computed", &plan_result::indices_computed,
+                    "False when config.decision_only returned u_nom without the indices: τ̄, the family and the "
+                    "selected indices then hold their defaults")
       .def_readonly("forecast_time", &plan_result::forecast_time, "τ̄ [s]")
       .def_readonly("forecast_index", &plan_result::forecast_index, "ī")
       .def_readonly("mi_brake_selected", &plan_result::mi_brake_selected, "MI− under the selected forecast times")

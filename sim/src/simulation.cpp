@@ -615,7 +615,8 @@ struct simulation::impl {
     input.ego.limits = spec.limits;
     input.nominal = nominal;
     input.config = spec.planner;
-    if (!options.map_columns) input.config.map_column = false;
+    if (!options.map_columns || options.decision_only) input.config.map_column = false;
+    if (options.decision_only) input.config.decision_only = true;
     input.drivable_area = area;
     const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
     std::size_t count = 0;

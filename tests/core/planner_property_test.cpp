@@ -150,6 +150,74 @@ TEST(planner_properties, planning_without_the_map_column_decides_the_same_bit_fo
   EXPECT_GT(cheaper, count / 10) << "leaving the map out should save work in many scenes, or this test checks little";
 }
 
+TEST(planner_properties, deciding_only_the_command_gives_the_full_step_s_command_bit_for_bit) {
+  // Scenes of one to four obstacles, a third of them aimed at the ego's path, so that u_nom is now
+  // safe under every forecast time and now not; the full step without the map column decides.
+  std::mt19937_64 rng(testing::property_seed() + 13);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  const std::size_t count = testing::property_count(160);
+  std::size_t shortcuts = 0;
+  std::size_t computed = 0;
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    testing::scene_options options;
+    options.obstacles = 1 + trial % 4;
+    options.sensor_noise = trial % 2 == 1;
+    options.conflict_probability = trial % 3 == 0 ? 0.9 : 0.3;
+    plan_input in = testing::random_scene(rng, options);
+    const double policy = unit(rng);
+    if (policy < 0.3) {
+      in.config.policy = {forecast_policy_kind::constant, 0.5 * std::floor(unit(rng) * 5.0)};
+    } else if (policy < 0.5) {
+      in.config.policy.kind = forecast_policy_kind::robust;
+    }
+    in.config.safety_margin = unit(rng) < 0.3 ? 0.5 * unit(rng) : 0.0;
+    in.config.map_column = false;
+    plan_input lean_input = in;
+    lean_input.config.decision_only = true;
+    const plan_result full = plan(in);
+    const plan_result lean = plan(lean_input);
+    SCOPED_TRACE("failing input:\n" + testing::describe(lean_input));
+    ASSERT_TRUE(full.ok() && lean.ok());
+    EXPECT_TRUE(full.indices_computed);
+    EXPECT_EQ(lean.command, full.command);
+    EXPECT_EQ(lean.mode, full.mode);
+    EXPECT_EQ(lean.time_to_collision, full.time_to_collision);
+    EXPECT_EQ(lean.excluded, full.excluded);
+    ASSERT_EQ(lean.obstacles.size(), full.obstacles.size());
+    for (std::size_t j = 0; j < lean.obstacles.size(); ++j) {
+      EXPECT_EQ(lean.obstacles[j].relevant, full.obstacles[j].relevant) << "obstacle " << j;
+      EXPECT_EQ(lean.obstacles[j].time_to_collision, full.obstacles[j].time_to_collision) << "obstacle " << j;
+    }
+    if (lean.indices_computed) {
+      expect_same_decision(lean, full);
+      ++computed;
+    } else {
+      EXPECT_EQ(full.mode, planning_mode::nominal) << "the shortcut returns only u_nom";
+      EXPECT_GT(lean.work.relevant_obstacles, 0u) << "without a relevant obstacle there is nothing to skip";
+      EXPECT_EQ(lean.work.bound_checks, 0u) << "no clearance field is built";
+      ++shortcuts;
+    }
+  }
+  EXPECT_GT(shortcuts, count / 10) << "u_nom should be proven under every forecast time in many scenes";
+  EXPECT_GT(computed, count / 10) << "many scenes should need the indices";
+}
+
+TEST(planner_properties, deciding_only_the_command_computes_every_index_when_the_map_column_is_wanted) {
+  std::mt19937_64 rng(testing::property_seed() + 17);
+  for (std::size_t trial = 0; trial < testing::property_count(30); ++trial) {
+    plan_input in = testing::random_scene(rng, {1 + trial % 3, false, true, 0.3});
+    in.config.decision_only = true;
+    in.config.map_column = trial % 2 == 0;
+    in.config.record_samples = !in.config.map_column;
+    plan_input full_input = in;
+    full_input.config.decision_only = false;
+    SCOPED_TRACE("failing input:\n" + testing::describe(in));
+    const plan_result lean = plan(in);
+    EXPECT_TRUE(lean.indices_computed);
+    expect_identical(lean, plan(full_input));
+  }
+}
+
 TEST(planner_properties, the_fast_search_holds_every_obstacle_that_does_not_turn_at_the_first_forecast_time) {
   // Some of two or three obstacles go straight: their clearances are the same under every forecast
   // time, and both searches give them τ = 0 (the exhaustive search by its tie rule).

@@ -85,6 +85,22 @@ def test_the_map_column_excludes_exactly_the_forecast_times_after_the_time_to_co
     assert result.excluded.any() and not result.excluded.all()
 
 
+def test_deciding_only_the_command_skips_the_indices_where_the_nominal_maneuver_is_safe_under_every_forecast():
+    # A slow ego: the crossing car passes 22 m ahead long before it could get there.
+    for ego_speed, shortcut in ((2.0, True), (40.0 / 3.6, False)):
+        scene = crossing_scene(ego_speed=ego_speed)
+        scene.config.map_column = False
+        full = mm.plan(scene)
+        scene.config.decision_only = True
+        lean = mm.plan(scene)
+        assert full.indices_computed
+        assert lean.indices_computed is not shortcut
+        assert lean.command == full.command and lean.mode == full.mode
+        assert lean.time_to_collision == full.time_to_collision
+        assert lean.obstacles[0].relevant
+        assert (lean.mode == mm.planning_mode.nominal) is shortcut
+
+
 def test_a_kept_planner_returns_what_plan_returns_bit_for_bit_step_after_step():
     kept = mm.planner()
     scene = crossing_scene()

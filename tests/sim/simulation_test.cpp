@@ -602,6 +602,44 @@ TEST(simulation, a_run_without_the_map_columns_makes_the_same_decisions_bit_for_
   for (std::size_t i = 0; i < with_map.size(); ++i) ASSERT_EQ(with_map[i], without_map[i]) << "value " << i;
 }
 
+TEST(simulation, a_run_that_decides_only_the_commands_moves_every_agent_the_same_bit_for_bit) {
+  const auto record = [](bool decision_only) {
+    run_options options;
+    options.map_columns = false;
+    options.decision_only = decision_only;
+    simulation sim(six_crossing_vehicles(), options);
+    std::vector<double> values;
+    std::size_t without_indices = 0;
+    std::size_t plans = 0;
+    run(sim, [&](const simulation& s) {
+      for (const agent_state& a : s.states()) {
+        values.insert(values.end(), {a.pose.position.x, a.pose.position.y, a.pose.heading, a.speed, a.acceleration, a.curvature});
+      }
+      for (agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
+        if (const plan_record* p = s.last_plan(id); p != nullptr && s.planned_now(id)) {
+          const mm::plan_result& r = p->result;
+          values.insert(values.end(), {r.time_to_collision, static_cast<double>(r.mode)});
+          without_indices += r.indices_computed ? 0 : 1;
+          ++plans;
+        }
+      }
+    });
+    std::vector<run_metrics> metrics = sim.all_metrics();
+    for (const run_metrics& m : metrics) {
+      values.insert(values.end(), {m.time_in_brake_s, m.time_in_accel_s, m.min_dist_m.value_or(-1.0), m.max_speed_kmh});
+    }
+    return std::tuple(values, without_indices, plans);
+  };
+  const auto [full, none, plans] = record(false);
+  const auto [lean, shortcuts, lean_plans] = record(true);
+  EXPECT_EQ(none, 0u);
+  EXPECT_EQ(plans, lean_plans);
+  EXPECT_GT(shortcuts, plans / 20) << "some steps should be decided without the indices, or this test checks little";
+  EXPECT_LT(shortcuts, plans) << "some steps should need the indices";
+  ASSERT_EQ(full.size(), lean.size());
+  for (std::size_t i = 0; i < full.size(); ++i) ASSERT_EQ(full[i], lean[i]) << "value " << i;
+}
+
 }  // namespace
 }  // namespace mm::sim
 

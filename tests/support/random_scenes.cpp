@@ -110,10 +110,15 @@ std::string describe(const plan_input& in) {
       << l.max_lateral_acceleration << ", " << l.min_turning_radius << ", " << l.speed_cap << ", "
       << (l.steering ? "true" : "false") << "};\n";
   out << "in.nominal = {" << in.nominal.acceleration << ", " << in.nominal.curvature << "};\n";
+  const forecast_policy_kind kind = in.config.policy.kind;
   out << "in.config.policy = {forecast_policy_kind::"
-      << (in.config.policy.kind == forecast_policy_kind::constant ? "constant" : "adjustable") << ", "
-      << in.config.policy.constant_forecast_time << "};\nin.config.safety_margin = " << in.config.safety_margin
+      << (kind == forecast_policy_kind::constant ? "constant" : kind == forecast_policy_kind::robust ? "robust" : "adjustable")
+      << ", " << in.config.policy.constant_forecast_time << "};\nin.config.safety_margin = " << in.config.safety_margin
       << ";\nin.config.urgent_steering = " << (in.config.urgent_steering ? "true" : "false") << ";\n";
+  const auto flag = [&](const char* name, bool value) { out << "in.config." << name << " = " << (value ? "true" : "false") << ";\n"; };
+  if (!in.config.map_column) flag("map_column", false);
+  if (in.config.record_samples) flag("record_samples", true);
+  if (in.config.decision_only) flag("decision_only", true);
   for (const obstacle_track& o : in.obstacles) {
     out << "in.obstacles.push_back({" << o.id << ", obstacle_kind::"
         << (o.kind == obstacle_kind::static_obstacle ? "static_obstacle" : to_string(o.kind)) << ", ";

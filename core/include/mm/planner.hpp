@@ -82,6 +82,10 @@ struct plan_result {
   /// True when the input's drivable area constrained this step: given, and the ego started on it
   /// (`starts_on_drivable_area`). Every index and the command then keep to the area within T_h.
   bool on_drivable_area = false;
+  /// False when `config.decision_only` returned u_nom without the indices: `selected_family`,
+  /// `forecast_time`, `forecast_index`, the selected indices and each obstacle's `forecast_index`
+  /// were not computed and hold their defaults.
+  bool indices_computed = true;
 
   /// The column of the Maneuverability Map at this time (spec §6): every obstacle forecast with τ_i.
   std::vector<double> forecast_times;

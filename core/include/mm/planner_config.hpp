@@ -38,6 +38,16 @@ struct planner_config {
   /// mode, τ̄, family, the selected indices, TTC, `excluded`) is the same, bit for bit. For runs whose
   /// maps nobody reads, such as the runs of a sweep. `record_samples` computes the column anyway.
   bool map_column = true;
+  /// Compute only what the command needs (docs/method.md §4.6): a step whose nominal maneuver is
+  /// proven collision-free with each relevant obstacle alone under each of its forecast times
+  /// τ_i ≤ TTC_j (the speed-bound proof of `verified_collision_free`), and on the drivable area,
+  /// returns u_nom without computing any Maneuverability Index: spec §8 rule 1 applies it under
+  /// whatever forecast times the indices would select. The command, mode, TTC and `excluded` are
+  /// those of the full step, bit for bit; `plan_result::indices_computed` is then false, and τ̄,
+  /// the family, the selected indices and each obstacle's forecast index are left at their
+  /// defaults. Applies only without the map column (`map_column` and `record_samples` false) and
+  /// with the coordinate-ascent search. For runs that keep only the commands, such as a sweep's.
+  bool decision_only = false;
 
   friend bool operator==(const planner_config&, const planner_config&) = default;
 };

@@ -587,6 +587,10 @@ class plan_result:
         """the input's drivable area constrained this step (given, and the ego started on it)"""
         ...
     @property
+    def indices_computed(self) -> bool:
+        """False when config.decision_only returned u_nom without the indices: τ̄, the family and the selected indices then hold their defaults"""
+        ...
+    @property
     def forecast_time(self) -> float:
         """τ̄ [s]"""
         ...
@@ -724,6 +728,8 @@ class planner_config:
     """fill plan_result.samples"""
     map_column: bool
     """compute every forecast time's indices (False: only those the decision reads)"""
+    decision_only: bool
+    """without the map column: a step whose u_nom is proven safe under every forecast time returns it without any index (plan_result.indices_computed False); the same command"""
 
 class planning_mode:
     """Members:

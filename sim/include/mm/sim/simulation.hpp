@@ -88,6 +88,12 @@ struct run_options {
   /// reads, such as a sweep's: only the forecast times the decisions read are evaluated, and every
   /// decision, so the whole run, is the same, bit for bit.
   bool map_columns = true;
+  /// Plan with `mm::planner_config::decision_only` (and without the map columns): a step whose
+  /// nominal maneuver is proven safe under every forecast time returns it without the indices.
+  /// Every command, so the whole run and its metrics, is the same, bit for bit; the plan records
+  /// of such steps have `indices_computed` false (no τ̄, family or selected indices). For runs whose
+  /// decisions nobody reads but through the metrics, such as a sweep's.
+  bool decision_only = false;
 };
 
 /// A run of a scenario on a fixed time grid t_k = k·dt (pure computation, no I/O).
