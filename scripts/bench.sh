@@ -5,7 +5,8 @@
 #      docs/figures/performance/cost-growth.png;
 #   2. with --full also: the multi-obstacle search agreement (1100 random scenes with 2 and with 3
 #      obstacles), the Table 1 sweep with 1, 2, 1 and 2 jobs, wall and CPU time, and the whole 20 s of
-#      the roundabout s6 with 2 threads: its real-time factor with and without the maps
+#      the roundabout s6 with 2 threads: its real-time factor with the maps, without them, and deciding
+#      only the commands (run_options::decision_only, as a sweep)
 #      (maneuvermap_bench --whole-roundabout) and its planning cost per simulated second (a run with
 #      --timing; the chart docs/figures/performance/s6-cost-per-second.png). Logs in out/bench/. About 10 to 12 minutes on the machines of docs/performance.md.
 #   bash scripts/bench.sh [--full]
@@ -52,7 +53,7 @@ if [[ "${1:-}" == "--full" ]]; then
   done
   echo "runs.csv identical in all four runs" | tee -a "$out/sweeps.txt"
   echo "== the whole roundabout s6, 2 threads: real-time factor, and cost per simulated second" >&2
-  ./build/release/benchmarks/maneuvermap_bench --whole-roundabout '--benchmark_filter=busy_roundabout/jobs:2/seconds:20' \
+  ./build/release/benchmarks/maneuvermap_bench --whole-roundabout '--benchmark_filter=busy_roundabout(_decision_only)?/jobs:2/seconds:20' \
     --benchmark_out="$out/whole-roundabout.json" --benchmark_out_format=json | tee "$out/whole-roundabout.txt"
   timed "s6-busy-roundabout --jobs 2 --timing (the maps and the output files included)" \
     ./build/release/cli/maneuvermap run s6-busy-roundabout --jobs 2 --timing --out "$out/s6-timing"
