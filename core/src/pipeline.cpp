@@ -81,7 +81,7 @@ bool verified_under_every_forecast(const ego_state& ego, const maneuver& u, std:
 /// reference) with each obstacle alone, obstacle j forecast with `forecast_times[j]`: one proof per
 /// obstacle, each stepping by its own clearance rather than by the smallest of them all. As sound as
 /// the proof with all of them at once, and neither proves everything the other does (docs/method.md
-/// §4.5).
+/// §4.6); with one obstacle it is that proof.
 bool verified_with_each(const ego_state& ego, const maneuver& u, std::span<const forecast_obstacle> obstacles,
                         std::span<const double> forecast_times, const collision_window& window, bool reference,
                         proof_steps stepping) {
@@ -880,12 +880,13 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
                                            stepping) &&
              on_road(u);
     };
-    // u_nom also by each obstacle alone under each of its forecast times, as the shortcut below proves it.
+    // u_nom also by each obstacle alone under each of its forecast times, as `decision_only` proves it
+    // (with one obstacle these are the proofs above).
     const auto nominal_under_every_forecast = [&](const maneuver& u, proof_steps stepping) {
       return (verified_under_every_forecast(ego, u, relevant, problem.candidates, taus, window, options.reference,
                                             stepping) ||
-              verified_with_each_under_every_forecast(ego, u, relevant, problem.candidates, taus, by_urgency, window,
-                                                      options.reference, stepping)) &&
+              (n > 1 && verified_with_each_under_every_forecast(ego, u, relevant, problem.candidates, taus, by_urgency,
+                                                                window, options.reference, stepping))) &&
              on_road(u);
     };
     if (const auto decision = choose(robust_colliding, robust_family, under_every_forecast, nominal_under_every_forecast)) {
@@ -981,10 +982,11 @@ plan_result run_pipeline(const plan_input& in, const pipeline_options& options, 
     };
     const auto assigned_free = [&](const maneuver& u, proof_steps stepping) { return with_all(u, stepping) && on_road(u); };
     // u_nom (rule 1) by the proof with all obstacles at once or by one with each alone: the second is
-    // what `decision_only` proves under every assignment, so that its shortcut decides as this does.
+    // what `decision_only` proves under every assignment, so that its shortcut decides as this does
+    // (with one obstacle the two are the same proof).
     const auto nominal_free = [&](const maneuver& u, proof_steps stepping) {
       return (with_all(u, stepping) ||
-              verified_with_each(ego, u, relevant, assigned_tau, window, options.reference, stepping)) &&
+              (n > 1 && verified_with_each(ego, u, relevant, assigned_tau, window, options.reference, stepping))) &&
              on_road(u);
     };
     if (const auto decision = choose(colliding, result.selected_family, assigned_free, nominal_free)) {

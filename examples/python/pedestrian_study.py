@@ -44,7 +44,7 @@ def scenario(pedestrian_start: float, avoidance: bool) -> mm.sim.scenario:
 def main(out: str) -> None:
     cases = [(start, avoidance) for avoidance in (False, True) for start in START_TIMES]
     with concurrent.futures.ThreadPoolExecutor(max_workers=2) as pool:
-        runs = list(pool.map(lambda case: mm.sim.run(scenario(*case), map_columns=False), cases))
+        runs = list(pool.map(lambda case: mm.sim.run(scenario(*case), decision_only=True), cases))
     crashes = {False: 0, True: 0}
     gap: dict[bool, list[float]] = {False: [], True: []}
     for (start, avoidance), run in zip(cases, runs):

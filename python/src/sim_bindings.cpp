@@ -46,6 +46,7 @@ struct map_record {
   std::vector<double> command_curvature;
   std::vector<double> cpu_time_us;
   std::vector<std::uint8_t> robust;
+  std::vector<std::uint8_t> indices_computed;
 };
 
 /// Everything a run of `run` recorded: the states of every agent at every step, the maps.
@@ -115,6 +116,7 @@ void record_instant(const sim::simulation& now, run_record& record) {
     map.command_curvature.push_back(r.command.curvature);
     map.cpu_time_us.push_back(p.cpu_time_us);
     map.robust.push_back(r.robust ? 1 : 0);
+    map.indices_computed.push_back(r.indices_computed ? 1 : 0);
   }
 }
 
@@ -179,13 +181,14 @@ loaded_scenario loaded_from(const char* call, const py::object& what, const std:
                        "scenario, got " + py::repr(what).cast<std::string>());
 }
 
-sim::run_options run_options_of(std::size_t jobs, bool map_columns, bool measure_cpu_time) {
+sim::run_options run_options_of(std::size_t jobs, bool map_columns, bool measure_cpu_time, bool decision_only = false) {
   // As `maneuvermap run --jobs`: at least one thread (the library reads 0 as 1; a caller who wrote 0
   // more likely meant "every core", which it is not).
   if (jobs < 1 || jobs > 256) throw py::value_error("jobs = " + std::to_string(jobs) + ": expected from 1 to 256 threads");
   sim::run_options options;
   options.jobs = jobs;
   options.map_columns = map_columns;
+  options.decision_only = decision_only;
   options.measure_cpu_time = measure_cpu_time;
   return options;
 }
@@ -365,17 +368,19 @@ void bind_simulation(py::module_& m) {
 
   py::class_<sim::simulation>(m, "simulation",
                               "A run of a scenario on a fixed time grid, step by step (docs/simulator.md).")
-      .def(py::init([](const loaded_scenario& loaded, std::size_t jobs, bool map_columns, bool measure_cpu_time) {
-             return start(loaded.scenario, run_options_of(jobs, map_columns, measure_cpu_time));
+      .def(py::init([](const loaded_scenario& loaded, std::size_t jobs, bool map_columns, bool measure_cpu_time,
+                       bool decision_only) {
+             return start(loaded.scenario, run_options_of(jobs, map_columns, measure_cpu_time, decision_only));
            }),
            py::arg("scenario"), py::kw_only(), py::arg("jobs") = 1, py::arg("map_columns") = true,
-           py::arg("measure_cpu_time") = false,
+           py::arg("measure_cpu_time") = false, py::arg("decision_only") = false,
            "Places every agent at t = 0 and makes the first decisions. ValueError when the scenario is invalid.")
-      .def(py::init([](const sim::scenario& s, std::size_t jobs, bool map_columns, bool measure_cpu_time) {
-             return start(s, run_options_of(jobs, map_columns, measure_cpu_time));
+      .def(py::init([](const sim::scenario& s, std::size_t jobs, bool map_columns, bool measure_cpu_time,
+                       bool decision_only) {
+             return start(s, run_options_of(jobs, map_columns, measure_cpu_time, decision_only));
            }),
            py::arg("scenario"), py::kw_only(), py::arg("jobs") = 1, py::arg("map_columns") = true,
-           py::arg("measure_cpu_time") = false)
+           py::arg("measure_cpu_time") = false, py::arg("decision_only") = false)
       .def("step", &sim::simulation::step,
            "Advances one time step: motion, crashes, metrics, sensing and decisions. No-op once ended.")
       .def("ended", &sim::simulation::ended)
@@ -414,7 +419,8 @@ void bind_simulation(py::module_& m) {
                      &map_record::mi_brake, &map_record::mi_accelerate, &map_record::excluded,
                      &map_record::forecast_time, &map_record::selected_family, &map_record::mode,
                      &map_record::time_to_collision, &map_record::command_acceleration,
-                     &map_record::command_curvature, &map_record::cpu_time_us, &map_record::robust);
+                     &map_record::command_curvature, &map_record::cpu_time_us, &map_record::robust,
+                     &map_record::indices_computed);
   map_type.def_readonly("agent", &map_record::agent)
       .def_property_readonly("times", [](const map_record& r) { return array_of(r.times); }, "[s], shape (steps,)")
       .def_property_readonly("forecast_times", [](const map_record& r) { return array_of(r.forecast_times); },
@@ -427,7 +433,11 @@ void bind_simulation(py::module_& m) {
       .def_property_readonly("excluded", [](const map_record& r) {
         return matrix_of<bool>(r.excluded, r.forecast_times.size());
       }, "τ_i > TTC, shape (steps, forecast times)")
-      .def_property_readonly("forecast_time", [](const map_record& r) { return array_of(r.forecast_time); }, "τ̄ [s]")
+      .def_property_readonly("forecast_time", [](const map_record& r) { return array_of(r.forecast_time); },
+                             "τ̄ [s]; 0 where indices_computed is False")
+      .def_property_readonly("indices_computed", [](const map_record& r) { return flags_of(r.indices_computed); },
+                             "False at the steps a run with decision_only decided without any index (u_nom proven "
+                             "safe under every forecast time): τ̄, the family and the selected indices not computed")
       .def_property_readonly("selected_family", [](const map_record& r) { return array_of(r.selected_family); },
                              "int(maneuvermap.family.…)")
       .def_property_readonly("mode", [](const map_record& r) { return array_of(r.mode); },
@@ -498,17 +508,19 @@ void bind_simulation(py::module_& m) {
   m.def("run",
         [](const py::object& what, const std::optional<std::map<std::string, double>>& set,
            const std::optional<forecast_policy>& policy, const std::optional<std::uint64_t>& seed, bool on_roads,
-           std::size_t jobs, bool map_columns, bool measure_cpu_time) {
+           std::size_t jobs, bool map_columns, bool measure_cpu_time, bool decision_only) {
           const loaded_scenario loaded = loaded_from("run", what, set, policy, seed, on_roads);
-          const sim::run_options options = run_options_of(jobs, map_columns, measure_cpu_time);
+          const sim::run_options options = run_options_of(jobs, map_columns, measure_cpu_time, decision_only);
           const py::gil_scoped_release release;
           return run_whole(loaded, options);
         },
         py::arg("scenario"), py::kw_only(), py::arg("set") = py::none(), py::arg("policy") = py::none(),
         py::arg("seed") = py::none(), py::arg("on_roads") = false, py::arg("jobs") = 1, py::arg("map_columns") = true,
-        py::arg("measure_cpu_time") = false,
+        py::arg("measure_cpu_time") = false, py::arg("decision_only") = false,
         "Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its "
-        "run_record: what `maneuvermap run` writes, as arrays. Releases the GIL.");
+        "run_record: what `maneuvermap run` writes, as arrays. decision_only: steps whose nominal maneuver is "
+        "proven safe under every forecast time compute no index (the same run; their rows of the maps have "
+        "indices_computed False). Releases the GIL.");
 
   m.def("write_run",
         [](const py::object& what, const std::filesystem::path& out_dir,

@@ -175,6 +175,21 @@ def test_a_run_without_map_columns_makes_the_same_decisions_and_keeps_no_indices
     assert b.excluded.shape == a.excluded.shape
 
 
+def test_a_run_that_decides_only_the_commands_drives_the_same_and_marks_the_steps_without_indices():
+    without = mm.sim.run("s3-left-turn", map_columns=False)
+    lean = mm.sim.run("s3-left-turn", decision_only=True)
+    assert lean.x.tobytes() == without.x.tobytes() and lean.speed.tobytes() == without.speed.tobytes()
+    a, b = without.maps[0], lean.maps[0]
+    assert b.mode.tobytes() == a.mode.tobytes()
+    assert b.time_to_collision.tobytes() == a.time_to_collision.tobytes()
+    assert a.indices_computed.all()
+    skipped = ~b.indices_computed
+    assert 0 < skipped.sum() < len(b.times)
+    assert (b.mode[skipped] == int(mm.planning_mode.nominal)).all()
+    assert np.array_equal(b.forecast_time[~skipped], a.forecast_time[~skipped])
+    assert lean.metrics[0].time_in_brake_s == without.metrics[0].time_in_brake_s
+
+
 def s1_crossing_built_in_python():
     """scenarios/s1-crossing.yaml at its defaults, written out in Python."""
     kmh = 1.0 / 3.6  # the scenario files' factor

@@ -291,7 +291,11 @@ class map_record:
         ...
     @property
     def forecast_time(self) -> numpy.typing.NDArray[numpy.float64]:
-        """τ̄ [s]"""
+        """τ̄ [s]; 0 where indices_computed is False"""
+        ...
+    @property
+    def indices_computed(self) -> numpy.typing.NDArray[numpy.bool_]:
+        """False at the steps a run with decision_only decided without any index (u_nom proven safe under every forecast time): τ̄, the family and the selected indices not computed"""
         ...
     @property
     def selected_family(self) -> numpy.typing.NDArray[numpy.uint8]:
@@ -661,8 +665,8 @@ class roundabout:
         ...
     def __repr__(self) -> str: ...
 
-def run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ...) -> run_record:
-    """Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its run_record: what `maneuvermap run` writes, as arrays. Releases the GIL."""
+def run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ..., decision_only: bool = ...) -> run_record:
+    """Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its run_record: what `maneuvermap run` writes, as arrays. decision_only: steps whose nominal maneuver is proven safe under every forecast time compute no index (the same run; their rows of the maps have indices_computed False). Releases the GIL."""
     ...
 
 class run_metrics:
@@ -1012,11 +1016,11 @@ class sensing_noise:
 class simulation:
     """A run of a scenario on a fixed time grid, step by step (docs/simulator.md)."""
     @overload
-    def __init__(self, scenario: loaded_scenario, *, jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ...) -> None:
+    def __init__(self, scenario: loaded_scenario, *, jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ..., decision_only: bool = ...) -> None:
         """Places every agent at t = 0 and makes the first decisions. ValueError when the scenario is invalid."""
         ...
     @overload
-    def __init__(self, scenario: scenario, *, jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ...) -> None: ...
+    def __init__(self, scenario: scenario, *, jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ..., decision_only: bool = ...) -> None: ...
     def step(self) -> None:
         """Advances one time step: motion, crashes, metrics, sensing and decisions. No-op once ended."""
         ...
