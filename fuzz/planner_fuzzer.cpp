@@ -112,6 +112,7 @@ class decoder {
     }
     c.record_samples = flag();
     c.map_column = flag();
+    c.decision_only = flag();
 
     const std::size_t obstacles = count(0, 4);
     for (std::size_t j = 0; j < obstacles; ++j) in.obstacles.push_back(track(static_cast<std::uint32_t>(j + 1), in));
@@ -238,6 +239,18 @@ void check(const mm::plan_input& in, mm::planner& kept) {
               std::equal(again.mi_accelerate.begin(), again.mi_accelerate.end(), r.mi_accelerate.begin(),
                          r.mi_accelerate.end(), same_bits),
           "a kept planner's result differs", in, r);
+  if (!r.indices_computed) {
+    // decision_only's shortcut: u_nom, the command of the full step (method.md §4.6).
+    require(in.config.decision_only && r.mode == mm::planning_mode::nominal, "a step without indices is not nominal",
+            in, r);
+    mm::plan_input full_input = in;
+    full_input.config.decision_only = false;
+    const mm::plan_result full = mm::plan(full_input);
+    require(full.ok() && full.mode == r.mode && same_bits(full.command.acceleration, r.command.acceleration) &&
+                same_bits(full.command.curvature, r.command.curvature) &&
+                same_bits(full.time_to_collision, r.time_to_collision),
+            "deciding only the command differs from the full step", in, r);
+  }
   // The command: finite and within the limits (spec §8.4).
   const mm::ego_limits& limits = in.ego.limits;
   require(std::isfinite(r.command.acceleration) && std::isfinite(r.command.curvature), "the command is not finite",
