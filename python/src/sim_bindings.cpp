@@ -518,9 +518,9 @@ void bind_simulation(py::module_& m) {
         py::arg("seed") = py::none(), py::arg("on_roads") = false, py::arg("jobs") = 1, py::arg("map_columns") = true,
         py::arg("measure_cpu_time") = false, py::arg("decision_only") = false,
         "Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its "
-        "run_record: what `maneuvermap run` writes, as arrays. decision_only: steps whose nominal maneuver is "
-        "proven safe under every forecast time compute no index (the same run; their rows of the maps have "
-        "indices_computed False). Releases the GIL.");
+        "run_record: what `maneuvermap run` writes, as arrays. decision_only: no map column (whatever "
+        "map_columns says), and steps whose nominal maneuver is proven safe under every forecast time compute no "
+        "index (the same run; their rows of the maps have indices_computed False). Releases the GIL.");
 
   m.def("write_run",
         [](const py::object& what, const std::filesystem::path& out_dir,

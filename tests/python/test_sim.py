@@ -183,6 +183,7 @@ def test_a_run_that_decides_only_the_commands_drives_the_same_and_marks_the_step
     assert b.mode.tobytes() == a.mode.tobytes()
     assert b.time_to_collision.tobytes() == a.time_to_collision.tobytes()
     assert a.indices_computed.all()
+    assert b.mi_brake.shape == (len(b.times), 0), "deciding only the commands computes no map column"
     skipped = ~b.indices_computed
     assert 0 < skipped.sum() < len(b.times)
     assert (b.mode[skipped] == int(mm.planning_mode.nominal)).all()

@@ -666,7 +666,7 @@ class roundabout:
     def __repr__(self) -> str: ...
 
 def run(scenario: Union[str, os.PathLike[str], loaded_scenario, scenario], *, set: Optional[Dict[str, float]] = ..., policy: Optional[_core.forecast_policy] = ..., seed: Optional[int] = ..., on_roads: bool = ..., jobs: int = ..., map_columns: bool = ..., measure_cpu_time: bool = ..., decision_only: bool = ...) -> run_record:
-    """Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its run_record: what `maneuvermap run` writes, as arrays. decision_only: steps whose nominal maneuver is proven safe under every forecast time compute no index (the same run; their rows of the maps have indices_computed False). Releases the GIL."""
+    """Runs a scenario (a built-in name, a file, a loaded_scenario or a scenario) to its end and returns its run_record: what `maneuvermap run` writes, as arrays. decision_only: no map column (whatever map_columns says), and steps whose nominal maneuver is proven safe under every forecast time compute no index (the same run; their rows of the maps have indices_computed False). Releases the GIL."""
     ...
 
 class run_metrics:
