@@ -616,7 +616,7 @@ struct simulation::impl {
     input.nominal = nominal;
     input.config = spec.planner;
     if (!options.map_columns || options.decision_only) input.config.map_column = false;
-    if (options.decision_only) input.config.decision_only = true;
+    input.config.decision_only = options.decision_only;  // whatever the vehicle's planner says: its plans are recorded
     input.drivable_area = area;
     const double own_reach = ego_reach(own.speed, spec.limits, spec.planner);
     std::size_t count = 0;

@@ -607,7 +607,10 @@ TEST(simulation, a_run_that_decides_only_the_commands_moves_every_agent_the_same
     run_options options;
     options.map_columns = false;
     options.decision_only = decision_only;
-    simulation sim(six_crossing_vehicles(), options);
+    // The vehicles' own planner.decision_only is not read: the run option alone decides.
+    scenario crossing = six_crossing_vehicles();
+    for (planning_vehicle& v : crossing.planning_vehicles) v.planner.decision_only = !decision_only;
+    simulation sim(crossing, options);
     std::vector<double> values;
     std::size_t without_indices = 0;
     std::size_t plans = 0;

@@ -46,7 +46,8 @@ struct planner_config {
   /// those of the full step, bit for bit; `plan_result::indices_computed` is then false, and τ̄,
   /// the family, the selected indices and each obstacle's forecast index are left at their
   /// defaults. Applies only without the map column (`map_column` and `record_samples` false) and
-  /// with the coordinate-ascent search. For runs that keep only the commands, such as a sweep's.
+  /// with the coordinate-ascent search. For runs that keep only the commands, such as a sweep's
+  /// (the simulator sets it from `mm::sim::run_options::decision_only`, whatever a vehicle's says).
   bool decision_only = false;
 
   friend bool operator==(const planner_config&, const planner_config&) = default;

@@ -92,7 +92,9 @@ struct run_options {
   /// nominal maneuver is proven safe under every forecast time returns it without the indices.
   /// Every command, so the whole run and its metrics, is the same, bit for bit; the plan records
   /// of such steps have `indices_computed` false (no τ̄, family or selected indices). For runs whose
-  /// decisions nobody reads but through the metrics, such as a sweep's.
+  /// decisions nobody reads but through the metrics, such as a sweep's. It alone decides: a planning
+  /// vehicle's own `planner.decision_only` is not read, so that the records a run writes have their
+  /// indices unless the run asks otherwise.
   bool decision_only = false;
 };
 
