@@ -643,11 +643,10 @@ TEST(planner, a_car_driving_alongside_just_outside_the_margin_leaves_the_nominal
 }
 
 TEST(planner, rule_1_accepts_u_nom_proven_with_each_obstacle_alone_so_deciding_only_the_command_decides_the_same) {
-  // A car crossing 20 m ahead whose corner passes within a few millimetres of the ego's, and a car
-  // alongside 0.4 m away: with both at once the proof of u_nom steps by the car alongside onto a
-  // time where the crossing car's clearance gives a step below the proof's resolution; with each
-  // alone it lands elsewhere and proves it (found by scanning the crossing car's start). The full
-  // step must accept that, as the shortcut of `decision_only` does.
+  // A car crossing 20 m ahead, and a car alongside 0.4 m away: the proof of u_nom with both at once
+  // fails, and the proof with each alone succeeds (found by scanning the crossing car's start; the
+  // assertions below keep the scene honest). The full step must accept that, as the shortcut of
+  // `decision_only` does.
   plan_input in = ego_only(10.0);
   const auto given = [&](std::uint32_t id, pose at) {
     obstacle_track track;

@@ -513,21 +513,32 @@ scenario six_crossing_vehicles() {
   return s;
 }
 
+/// Appends the state of every agent at `s`'s instant to `values`.
+void append_states(const simulation& s, std::vector<double>& values) {
+  for (const agent_state& a : s.states()) {
+    values.insert(values.end(), {a.pose.position.x, a.pose.position.y, a.pose.heading, a.speed, a.acceleration, a.curvature});
+  }
+}
+
+/// Calls `each` with the result of every plan made at `s`'s instant.
+template <class Each>
+void for_each_plan_now(const simulation& s, Each&& each) {
+  for (agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
+    if (const plan_record* p = s.last_plan(id); p != nullptr && s.planned_now(id)) each(p->result);
+  }
+}
+
 TEST(simulation, planning_the_vehicles_of_a_step_on_several_threads_gives_bit_identical_runs) {
   const auto record = [](std::size_t jobs) {
     simulation sim(six_crossing_vehicles(), run_options{false, jobs});
     std::vector<double> values;
     run(sim, [&](const simulation& s) {
-      for (const agent_state& a : s.states()) {
-        values.insert(values.end(), {a.pose.position.x, a.pose.position.y, a.pose.heading, a.speed, a.acceleration, a.curvature});
-      }
-      for (agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
-        if (const plan_record* p = s.last_plan(id); p != nullptr && s.planned_now(id)) {
-          values.insert(values.end(), p->result.mi_brake.begin(), p->result.mi_brake.end());
-          values.insert(values.end(), p->result.mi_accelerate.begin(), p->result.mi_accelerate.end());
-          values.push_back(p->result.time_to_collision);
-        }
-      }
+      append_states(s, values);
+      for_each_plan_now(s, [&](const mm::plan_result& r) {
+        values.insert(values.end(), r.mi_brake.begin(), r.mi_brake.end());
+        values.insert(values.end(), r.mi_accelerate.begin(), r.mi_accelerate.end());
+        values.push_back(r.time_to_collision);
+      });
     });
     return values;
   };
@@ -580,17 +591,12 @@ TEST(simulation, a_run_without_the_map_columns_makes_the_same_decisions_bit_for_
     std::vector<double> values;
     std::size_t columns = 0;
     run(sim, [&](const simulation& s) {
-      for (const agent_state& a : s.states()) {
-        values.insert(values.end(), {a.pose.position.x, a.pose.position.y, a.pose.heading, a.speed, a.acceleration, a.curvature});
-      }
-      for (agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
-        if (const plan_record* p = s.last_plan(id); p != nullptr && s.planned_now(id)) {
-          const mm::plan_result& r = p->result;
-          values.insert(values.end(), {r.forecast_time, r.mi_brake_selected, r.mi_accelerate_selected, r.time_to_collision,
-                                       static_cast<double>(r.mode), static_cast<double>(r.selected_family)});
-          columns += r.mi_brake.size();
-        }
-      }
+      append_states(s, values);
+      for_each_plan_now(s, [&](const mm::plan_result& r) {
+        values.insert(values.end(), {r.forecast_time, r.mi_brake_selected, r.mi_accelerate_selected, r.time_to_collision,
+                                     static_cast<double>(r.mode), static_cast<double>(r.selected_family)});
+        columns += r.mi_brake.size();
+      });
     });
     return std::pair(values, columns);
   };
@@ -615,17 +621,12 @@ TEST(simulation, a_run_that_decides_only_the_commands_moves_every_agent_the_same
     std::size_t without_indices = 0;
     std::size_t plans = 0;
     run(sim, [&](const simulation& s) {
-      for (const agent_state& a : s.states()) {
-        values.insert(values.end(), {a.pose.position.x, a.pose.position.y, a.pose.heading, a.speed, a.acceleration, a.curvature});
-      }
-      for (agent_id id = 0; id < s.planning_vehicle_count(); ++id) {
-        if (const plan_record* p = s.last_plan(id); p != nullptr && s.planned_now(id)) {
-          const mm::plan_result& r = p->result;
-          values.insert(values.end(), {r.time_to_collision, static_cast<double>(r.mode)});
-          without_indices += r.indices_computed ? 0 : 1;
-          ++plans;
-        }
-      }
+      append_states(s, values);
+      for_each_plan_now(s, [&](const mm::plan_result& r) {
+        values.insert(values.end(), {r.time_to_collision, static_cast<double>(r.mode)});
+        without_indices += r.indices_computed ? 0 : 1;
+        ++plans;
+      });
     });
     std::vector<run_metrics> metrics = sim.all_metrics();
     for (const run_metrics& m : metrics) {
