@@ -1188,6 +1188,18 @@ void clearance_field::straight_part_block(std::uint32_t index, std::size_t i, ra
       return;
     }
   }
+  if (b.end - b.begin <= straight_together) {
+    // Undecided and small: its samples one by one, each `collisions_reference`'s test, without the
+    // tests of the blocks between (most of which decide nothing this close to the boundary).
+    for (std::size_t q = b.begin; q < b.end; ++q) {
+      if (state.hit.test(q)) continue;
+      ++work_.bound_checks;
+      const straight_motion single = straight_motion_of(i, sweep_.order()[q]);
+      if (straight_apart(single, 0.0)) continue;
+      if (straight_collides(single)) mark(q, record ? part_start_[slot(i)] + straight_first_contact(single) : 0.0);
+    }
+    return;
+  }
   straight_part_block(index + 1, i, state);
   straight_part_block(b.second, i, state);
 }
