@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <limits>
-#include <map>
+#include <unordered_map>
 
+#include "index_hash.hpp"
 #include "mm/forecast_policy.hpp"
 
 namespace mm {
@@ -89,7 +90,7 @@ forecast_assignment coordinate_ascent_assignment_search(const assignment_problem
   std::size_t evaluations = 0;
   const bool rough = static_cast<bool>(problem.rough_room);
   // Every assignment the climb meets, with what it was climbed by.
-  std::map<std::vector<std::size_t>, double> met;
+  std::unordered_map<std::vector<std::size_t>, double, detail::index_hash> met;
   const room_function climb = [&](std::span<const std::size_t> index) {
     const double r = rough ? problem.rough_room(index) : problem.room(index);
     met.emplace(std::vector<std::size_t>(index.begin(), index.end()), r);
@@ -135,14 +136,19 @@ forecast_assignment coordinate_ascent_assignment_search(const assignment_problem
   };
   forecast_assignment best = better(b, a) ? std::move(b) : std::move(a);
   if (rough) {
-    // Ranked by their rooms: the assignments whose rough room came close to the best rough room.
+    // Ranked by their rooms, in the order of their forecast indices: the assignments whose rough
+    // room came close to the best rough room.
     double top = -1.0;
     for (const auto& [index, r] : met) top = std::max(top, r);
+    std::vector<const std::vector<std::size_t>*> close;
+    for (const auto& [index, r] : met) {
+      if (!(r < top - problem.rough_margin)) close.push_back(&index);
+    }
+    std::sort(close.begin(), close.end(), [](const auto* x, const auto* y) { return *x < *y; });
     forecast_assignment ranked;
     ranked.room = -1.0;
-    for (const auto& [index, r] : met) {
-      if (r < top - problem.rough_margin) continue;
-      forecast_assignment candidate{index, problem.room(index), 0};
+    for (const std::vector<std::size_t>* index : close) {
+      forecast_assignment candidate{*index, problem.room(*index), 0};
       ++evaluations;
       if (ranked.room < 0.0 || better(candidate, ranked)) ranked = std::move(candidate);
     }

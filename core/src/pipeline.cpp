@@ -8,7 +8,7 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
-#include <map>
+#include <unordered_map>
 #include <optional>
 #include <span>
 #include <string>
@@ -20,6 +20,7 @@
 #include "mm/maneuverability.hpp"
 #include "mm/number_text.hpp"
 #include "mm/road_constraint.hpp"
+#include "index_hash.hpp"
 #include "union_cells.hpp"
 
 namespace mm::detail {
@@ -524,9 +525,9 @@ class evaluator {
   std::vector<clearance_field> fields_;  ///< reserved for every obstacle first (`reserve_fields`): never moved
   std::optional<road_field> road_;       ///< fast path: the road constraint, when it binds
   std::optional<clearance_set> road_reference_;  ///< reference: the road constraint's ±1, when it binds
-  std::map<std::vector<std::size_t>, double> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
-  std::map<std::array<std::size_t, 3>, double> rooms_alone_;  ///< `room_alone`, keyed by (j, i, rough)
-  std::map<std::vector<std::size_t>, double> column_rooms_;  ///< the rooms of the map's column, keyed as `rooms_`
+  std::unordered_map<std::vector<std::size_t>, double, index_hash> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
+  std::unordered_map<std::array<std::size_t, 3>, double, index_hash> rooms_alone_;  ///< `room_alone`, keyed by (j, i, rough)
+  std::unordered_map<std::vector<std::size_t>, double, index_hash> column_rooms_;  ///< the rooms of the map's column, keyed as `rooms_`
   static constexpr std::size_t rough_key = std::numeric_limits<std::size_t>::max();
   std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
   std::vector<std::size_t> scratch_key_;
