@@ -1,6 +1,7 @@
 #include "mm/maneuverability.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <bit>
 #include <cstdint>
@@ -337,7 +338,8 @@ double maneuverability_index_of_union(const displacement_set& set,
 
 double maneuverability_index_of_union(const displacement_set& set,
                                       std::span<const std::span<const double>> clearances,
-                                      std::span<const sample_mask> negative, std::size_t first) {
+                                      std::span<const sample_mask> negative, std::size_t first,
+                                      std::span<double* const> single_shares) {
   const std::size_t columns = set.curvature_count;
   const std::size_t rows = set.acceleration_count;
   const std::size_t count = clearances.size();
@@ -373,12 +375,23 @@ double maneuverability_index_of_union(const displacement_set& set,
       const std::size_t lower = ia * columns + ik;
       const std::size_t upper = lower + columns;
       corners.clear();
+      std::size_t alone = count;
       for (std::size_t j = 0; j < count; ++j) {
         if (((touching[j] >> ik) & 1U) == 0) continue;
         const std::span<const double> c = clearances[j];
         corners.push_back({c[lower], c[lower + 1], c[upper + 1], c[upper]});
+        alone = corners.size() == 1 ? j : count;
       }
-      safe += w[ik] * safe_fraction(std::span<const cell_corners>(corners));
+      double* const kept = alone < single_shares.size() && single_shares[alone] != nullptr
+                               ? single_shares[alone] + ia * (columns - 1) + ik
+                               : nullptr;
+      if (kept != nullptr && !std::isnan(*kept)) {
+        safe += w[ik] * *kept;
+        continue;
+      }
+      const double share = safe_fraction(std::span<const cell_corners>(corners));
+      if (kept != nullptr) *kept = share;
+      safe += w[ik] * share;
     }
   }
   if (total <= 0.0) return 1.0;

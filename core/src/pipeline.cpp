@@ -118,6 +118,35 @@ bool verified_with_each_under_every_forecast(const ego_state& ego, const maneuve
   return true;
 }
 
+/// The corners a cell of four reads, for each pattern of its corners ≤ 0 (bit q: corner q,
+/// counter-clockwise): the ends of every edge whose ends differ in sign, or all four of a saddle,
+/// each once, in the order of the edges (q, q + 1).
+struct cell_reads {
+  std::array<std::uint8_t, 4> corner{};
+  std::uint8_t count = 0;
+};
+constexpr std::array<cell_reads, 16> cell_read_table = [] {
+  std::array<cell_reads, 16> table{};
+  for (unsigned negative = 1; negative + 1 < 16; ++negative) {
+    cell_reads& reads = table[negative];
+    const bool saddle = negative == 0b0101U || negative == 0b1010U;
+    const auto add = [&](unsigned q) {
+      for (std::size_t r = 0; r < reads.count; ++r) {
+        if (reads.corner[r] == q) return;
+      }
+      reads.corner[reads.count++] = static_cast<std::uint8_t>(q);
+    };
+    for (unsigned q = 0; q < 4; ++q) {
+      const unsigned next = (q + 1) % 4;
+      if (saddle || ((negative >> q) & 1U) != ((negative >> next) & 1U)) {
+        add(q);
+        add(next);
+      }
+    }
+  }
+  return table;
+}();
+
 /// The clearances of every relevant obstacle under an assignment of forecast times, and how to
 /// turn them into indices. The reference holds ±1 per sample (collides or not) and counts; the fast
 /// path holds a `clearance_field` per obstacle and makes exact only the values the interpolating
@@ -171,7 +200,7 @@ class evaluator {
     const std::array<std::size_t, 3> key{j, i, rough ? 1u : 0u};
     if (const auto it = rooms_alone_.find(key); it != rooms_alone_.end()) return it->second;
     const std::pair<std::size_t, std::size_t> part{j, i};
-    combined_parts(std::span(&part, 1), scratch_set_, rough);
+    combined_parts(std::span(&part, 1), scratch_set_, rough, true);
     const double r = room(scratch_set_, rough);
     rooms_alone_.emplace(key, r);
     return r;
@@ -211,7 +240,7 @@ class evaluator {
     if (!rough) {
       if (const auto it = column_rooms_.find(key); it != column_rooms_.end()) return it->second;
     }
-    combine_into(index, scratch_set_, rough);
+    combine_into(index, scratch_set_, rough, true);
     const double r = room(scratch_set_, rough);
     rooms_.emplace(key, r);
     return r;
@@ -301,17 +330,20 @@ class evaluator {
     return key;
   }
 
-  /// `combined` into `c`, with the parts list in a buffer kept between calls; `rough`: signs only.
-  void combine_into(std::span<const std::size_t> index, clearance_set& c, bool rough = false) {
+  /// `combined` into `c`, with the parts list in a buffer kept between calls; `rough` and
+  /// `room_only` as in `combined_parts`.
+  void combine_into(std::span<const std::size_t> index, clearance_set& c, bool rough = false, bool room_only = false) {
     scratch_parts_.clear();
     for (std::size_t j = 0; j < index.size(); ++j) scratch_parts_.emplace_back(j, index[j]);
-    combined_parts(scratch_parts_, c, rough);
+    combined_parts(scratch_parts_, c, rough, room_only);
   }
 
   /// The combined set of `parts` (obstacle, forecast index) into `c`, as `combined`; `rough` (fast
-  /// path): the signs of the sampled collisions only, into `positive_` (`c` is left as it was).
+  /// path): the signs of the sampled collisions only, into `positive_` (`c` is left as it was);
+  /// `room_only` (fast path): only `indices` will be asked for, so where several parts are live,
+  /// whose indices `union_indices` gives, `c` is left as it was too.
   void combined_parts(std::span<const std::pair<std::size_t, std::size_t>> parts, clearance_set& c,
-                      bool rough = false) {
+                      bool rough = false, bool room_only = false) {
     if (reference_) {
       c.assign(samples_.size(), std::numeric_limits<double>::infinity());
       for (const auto& [j, i] : parts) {
@@ -342,6 +374,7 @@ class evaluator {
     if (road_ && road_->collides()) live_parts_.emplace_back(road_part(), 0);
     // Several obstacles: the indices now (their reads may make samples collide), the signs after.
     if (live_parts_.size() >= 2) union_indices_ = union_indices(live_parts_);
+    if (room_only && union_indices_) return;
     c.assign(samples_.size(), clearance_cap);
     negative_.for_each([&](std::size_t m) { c[m] = -clearance_cap; });
     if (live_parts_.size() == 1) make_read_values_exact(live_parts_.front(), c);
@@ -372,12 +405,23 @@ class evaluator {
     }
     const std::span<const sample_mask> negative = std::span(union_negative_).first(count);
     maneuverability_pair mi;
+    const std::size_t brake_cells = samples_.set(family::brake).cell_weights.size();
+    const std::size_t cells = brake_cells + samples_.set(family::accelerate).cell_weights.size();
+    union_shares_.clear();
+    for (const auto& [j, i] : union_parts_) {
+      std::vector<double>& shares = single_shares_[(static_cast<std::uint64_t>(j) << 32) | i];
+      if (shares.empty()) shares.assign(cells, std::numeric_limits<double>::quiet_NaN());
+      union_shares_.push_back(shares.data());
+    }
     for (const family f : {family::brake, family::accelerate}) {
       const index_range r = samples_.grid(f);
       union_family_spans_.clear();
       for (const std::span<const double> all : union_spans_) union_family_spans_.push_back(all.subspan(r.begin, r.size()));
+      if (f == family::accelerate) {
+        for (double*& shares : union_shares_) shares += brake_cells;
+      }
       (f == family::brake ? mi.brake : mi.accelerate) =
-          maneuverability_index_of_union(samples_.set(f), union_family_spans_, negative, r.begin);
+          maneuverability_index_of_union(samples_.set(f), union_family_spans_, negative, r.begin, union_shares_);
     }
     return mi;
   }
@@ -457,12 +501,16 @@ class evaluator {
   template <class MakeExact>
   static void read_cell(std::size_t p, unsigned negative, std::size_t corners, const std::array<std::size_t, 4>& node,
                         MakeExact&& make_exact) {
+    if (corners == 4) {
+      const cell_reads& reads = cell_read_table[negative];
+      for (std::size_t r = 0; r < reads.count; ++r) make_exact(p, node[reads.corner[r]]);
+      return;
+    }
     const unsigned all = (1U << corners) - 1;
     if (negative == 0 || negative == all) return;
-    const bool saddle = corners == 4 && (negative == 0b0101U || negative == 0b1010U);
     for (std::size_t q = 0; q < corners; ++q) {
       const std::size_t next = (q + 1) % corners;
-      if (saddle || ((negative >> q) & 1U) != ((negative >> next) & 1U)) {
+      if (((negative >> q) & 1U) != ((negative >> next) & 1U)) {
         make_exact(p, node[q]);
         make_exact(p, node[next]);
       }
@@ -544,6 +592,11 @@ class evaluator {
   std::vector<std::span<const double>> union_family_spans_;      ///< their sets over one family's grid
   std::vector<sample_mask> union_negative_;  ///< their samples ≤ 0: the sampled collisions and the values read ≤ 0
   std::vector<std::uint64_t> union_touching_;  ///< scratch of read_union_cells: per obstacle, the cells (or corners) it is ≤ 0 at
+  /// Per part (j << 32 | i): the safe share of each cell (brake's cells, then accelerate's) where it
+  /// alone is ≤ 0 at a corner, NaN until a union needs it (`maneuverability_index_of_union`); its
+  /// read values are exact and final, so the share is the same in every union.
+  std::unordered_map<std::uint64_t, std::vector<double>> single_shares_;
+  std::vector<double*> union_shares_;  ///< scratch of union_indices: single_shares_ of its parts, in their order
 };
 
 }  // namespace

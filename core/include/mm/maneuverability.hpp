@@ -73,10 +73,17 @@ double maneuverability_index_of_union(const displacement_set& set,
 /// holds, from index `first` on, one bit per node of `set` in node order, set where `clearances[j]`
 /// is ≤ 0. Equal bit for bit; a cell where no obstacle has a corner ≤ 0 adds its weight, and one
 /// that an obstacle is ≤ 0 at all four corners of adds nothing, without reading a value (grids of
-/// 2 to 64 rows and columns; others go node by node).
+/// 2 to 64 rows and columns; others go node by node). `single_shares` (empty, or one entry per
+/// obstacle, each null or the obstacle's own array of the grid's cells, row by row): a cell that
+/// obstacle j alone has a corner ≤ 0 at takes its safe share from `single_shares[j][cell]` when
+/// that is not NaN and stores it there otherwise — for a caller that evaluates unions of the same
+/// obstacles' clearances many times (the forecast-time search, spec §9). Such a share depends only
+/// on the values at the ends of the cell's sign-changing edges (all four corners of a saddle), which
+/// must be the same at every call that passes the array; the result is then the same bit for bit.
 double maneuverability_index_of_union(const displacement_set& set,
                                       std::span<const std::span<const double>> clearances,
-                                      std::span<const sample_mask> negative, std::size_t first);
+                                      std::span<const sample_mask> negative, std::size_t first,
+                                      std::span<double* const> single_shares = {});
 
 /// `maneuverability_index` from the signs of the clearances alone, as if every positive node were
 /// +1 and every other −1: the boundary through the middle of every edge whose ends differ. Equal
