@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <span>
+#include <bit>
+#include <cmath>
+#include <limits>
 #include <random>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -222,6 +225,61 @@ TEST(maneuverability_properties, the_index_of_a_union_with_sign_bits_is_the_cell
     ASSERT_EQ(maneuverability_index_of_union(set, spans, negative, first), maneuverability_index_of_union(set, spans))
         << input;
   }
+}
+
+TEST(maneuverability_properties, a_union_that_keeps_each_obstacle_s_single_shares_gives_the_cell_by_cell_index_at_every_call) {
+  // The forecast-time search evaluates unions of the same obstacles' clearances many times, each
+  // obstacle keeping the shares of the cells it alone touches: every union, first or again, in any
+  // order, must equal the cell-by-cell index bit for bit.
+  std::mt19937_64 rng(testing::property_seed() + 41);
+  std::uniform_real_distribution<double> value(-3.0, 3.0);
+  std::size_t kept = 0;
+  const std::size_t count = testing::property_count(200);
+  for (std::size_t trial = 0; trial < count; ++trial) {
+    const ego_state ego = ego_at_random_speed(rng);
+    const sampling_resolution resolution{2 + rng() % 20, 2 + rng() % 40};
+    const maneuver_samples samples = sample_maneuvers(ego, 0.0, 1.0, resolution, false, false);
+    const displacement_set& set = trial % 2 == 0 ? samples.brake : samples.accelerate;
+    const std::size_t obstacles = 2 + trial % 3;
+    const std::size_t first = rng() % 100;
+    std::vector<std::vector<double>> values(obstacles, std::vector<double>(set.samples.size()));
+    std::vector<sample_mask> negative(obstacles, sample_mask(first + set.samples.size()));
+    for (std::size_t j = 0; j < obstacles; ++j) {
+      const double centre = static_cast<double>(rng() % set.samples.size());
+      const double radius = 1.0 + static_cast<double>(rng() % 30);
+      for (std::size_t m = 0; m < set.samples.size(); ++m) {
+        values[j][m] = std::abs(static_cast<double>(m) - centre) - radius + 0.3 * value(rng);
+        if (!(values[j][m] > 0.0)) negative[j].set(first + m);
+      }
+    }
+    std::vector<std::vector<double>> shares(
+        obstacles, std::vector<double>(set.cell_weights.size(), std::numeric_limits<double>::quiet_NaN()));
+    // Every union of two or more of the obstacles, twice, in a random order.
+    std::vector<unsigned> unions;
+    for (unsigned subset = 1; subset < (1U << obstacles); ++subset) {
+      if (std::popcount(subset) >= 2) unions.insert(unions.end(), {subset, subset});
+    }
+    std::shuffle(unions.begin(), unions.end(), rng);
+    for (const unsigned subset : unions) {
+      std::vector<std::span<const double>> spans;
+      std::vector<sample_mask> bits;
+      std::vector<double*> kept_shares;
+      for (std::size_t j = 0; j < obstacles; ++j) {
+        if (((subset >> j) & 1U) == 0) continue;
+        spans.emplace_back(values[j]);
+        bits.push_back(negative[j]);
+        kept_shares.push_back(shares[j].data());
+      }
+      ASSERT_EQ(maneuverability_index_of_union(set, spans, bits, first, kept_shares),
+                maneuverability_index_of_union(set, spans))
+          << "seed " << testing::property_seed() << ", trial " << trial << ", resolution " << resolution.accelerations
+          << " x " << resolution.curvatures << ", obstacles " << obstacles << ", union " << subset;
+    }
+    for (const std::vector<double>& s : shares) {
+      kept += static_cast<std::size_t>(std::count_if(s.begin(), s.end(), [](double x) { return !std::isnan(x); }));
+    }
+  }
+  EXPECT_GT(kept, count) << "the unions kept some cells' shares";
 }
 
 TEST(maneuverability_properties, the_indices_with_sign_bits_equal_the_node_by_node_ones_on_degenerate_and_one_column_sets) {
