@@ -354,8 +354,7 @@ double maneuverability_index_of_union(const displacement_set& set,
   }
   if (all_safe) return 1.0;
   std::vector<std::uint64_t> touching(count);  // per obstacle: the cells of the row with a corner ≤ 0
-  std::vector<cell_corners> corners;
-  corners.reserve(count);
+  std::vector<cell_corners> corners(count);      // a cell's: those of the obstacles ≤ 0 at one of them
   const double total = total_cell_weight(set);
   double safe = 0.0;
   const std::uint64_t cells = (std::uint64_t{1} << (columns - 1)) - 1;
@@ -374,13 +373,13 @@ double maneuverability_index_of_union(const displacement_set& set,
       }
       const std::size_t lower = ia * columns + ik;
       const std::size_t upper = lower + columns;
-      corners.clear();
+      std::size_t touching_cell = 0;
       std::size_t alone = count;
       for (std::size_t j = 0; j < count; ++j) {
         if (((touching[j] >> ik) & 1U) == 0) continue;
         const std::span<const double> c = clearances[j];
-        corners.push_back({c[lower], c[lower + 1], c[upper + 1], c[upper]});
-        alone = corners.size() == 1 ? j : count;
+        corners[touching_cell++] = {c[lower], c[lower + 1], c[upper + 1], c[upper]};
+        alone = touching_cell == 1 ? j : count;
       }
       double* const kept = alone < single_shares.size() && single_shares[alone] != nullptr
                                ? single_shares[alone] + ia * (columns - 1) + ik
@@ -389,7 +388,7 @@ double maneuverability_index_of_union(const displacement_set& set,
         safe += w[ik] * *kept;
         continue;
       }
-      const double share = safe_fraction(std::span<const cell_corners>(corners));
+      const double share = safe_fraction(std::span<const cell_corners>(corners).first(touching_cell));
       if (kept != nullptr) *kept = share;
       safe += w[ik] * share;
     }
