@@ -264,17 +264,26 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
   const double largest = largest_speed(ego, u, window.horizon);
   const double ego_rate = largest * (1.0 + std::abs(u.curvature) * ego_radius);
   constexpr std::size_t none = std::numeric_limits<std::size_t>::max();
+  // An obstacle's step is the same whichever is visited first (the step taken is the least of
+  // theirs), so one whose gap is surely too large to shorten the step is not placed at all: its
+  // bounding discs' gap, known at an earlier time, falls no faster than the sum of the reference
+  // points' largest speeds.
   struct obstacle_step {
-    double rate;    ///< largest rate of the pair's signed distance [m/s]
-    double radius;  ///< bounding radius [m]
-    pose at;        ///< placement at the current time
-    double gap;     ///< lower bound of its signed distance − margin at the current time [m]
+    double rate;         ///< largest rate of the pair's signed distance [m/s]
+    double centre_rate;  ///< largest rate of the reference points' distance [m/s]
+    double radius;       ///< bounding radius [m]
+    pose at;             ///< placement at time `known`
+    double gap;          ///< lower bound of its signed distance − margin at time `known` [m]
+    double known;        ///< when it was last placed [s]
+    double bound;        ///< lower bound of the gap at the current time [m]
   };
   std::vector<obstacle_step> steps(obstacles.size());
   for (std::size_t j = 0; j < obstacles.size(); ++j) {
     const forecast_obstacle& o = obstacles[j];
     steps[j].radius = bounding_radius(o.shape);
     steps[j].rate = ego_rate + o.motion.speed + std::abs(o.motion.yaw_rate) * steps[j].radius;
+    steps[j].centre_rate = (largest + o.motion.speed) * (1.0 + 1e-9);
+    steps[j].known = -std::numeric_limits<double>::infinity();
   }
   double t = 0.0;
   while (true) {
@@ -284,24 +293,39 @@ bool verified_collision_free(const ego_state& ego, const maneuver& u, std::span<
         stepping == proof_steps::translation_bound ? ego_motion(ego, u, ego_pose, t, window, largest) : ego_motion_at{};
     const double remaining = window.duration - t;
     double step = remaining;
-    // The obstacle that most likely sets the step first: the smallest gap / rate.
-    std::size_t first = none;
-    double first_ratio = std::numeric_limits<double>::infinity();
-    for (std::size_t j = 0; j < obstacles.size(); ++j) {
+    const auto place_at_t = [&](std::size_t j) {
       obstacle_step& s = steps[j];
       s.at = forecast_pose(obstacles[j].motion, forecast_times[j], t);
       const double centres = norm(s.at.position - ego_pose.position);
       const double reach = ego_radius + s.radius + window.margin;
       s.gap = centres - reach - (1e-9 + 1e-12 * (centres + reach));
-      const double ratio = s.gap <= 0.0 ? -std::numeric_limits<double>::infinity() : s.rate > 0.0 ? s.gap / s.rate : std::numeric_limits<double>::infinity();
+      s.known = t;
+      s.bound = s.gap;
+    };
+    // A gap that surely leaves the step at `limit`: its obstacle changes nothing.
+    const auto surely_apart = [](const obstacle_step& s, double limit) {
+      return s.bound > 0.0 && (s.rate <= 0.0 || s.bound / s.rate >= limit);
+    };
+    // The obstacle that most likely sets the step first: the smallest gap / rate.
+    std::size_t first = none;
+    double first_ratio = std::numeric_limits<double>::infinity();
+    for (std::size_t j = 0; j < obstacles.size(); ++j) {
+      obstacle_step& s = steps[j];
+      if (s.known != t) s.bound = s.gap - s.centre_rate * (t - s.known) - 1e-12;
+      if (!surely_apart(s, remaining)) place_at_t(j);
+      const double ratio = s.bound <= 0.0 ? -std::numeric_limits<double>::infinity() : s.rate > 0.0 ? s.bound / s.rate : std::numeric_limits<double>::infinity();
       if (first == none || ratio < first_ratio) {
         first = j;
         first_ratio = ratio;
       }
     }
     const auto visit = [&](std::size_t j) {
-      const obstacle_step& s = steps[j];
-      if (s.gap > 0.0 && (s.rate <= 0.0 || s.gap / s.rate >= step)) return true;
+      obstacle_step& s = steps[j];
+      if (surely_apart(s, step)) return true;
+      if (s.known != t) {
+        place_at_t(j);
+        if (surely_apart(s, step)) return true;
+      }
       const placed_footprint o = place(obstacles[j].shape, s.at);
       const double clearance = signed_distance(e, o) - window.margin;
       if (clearance <= 0.0) return false;
