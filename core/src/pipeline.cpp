@@ -201,7 +201,7 @@ class evaluator {
     if (const auto it = rooms_alone_.find(key); it != rooms_alone_.end()) return it->second;
     const std::pair<std::size_t, std::size_t> part{j, i};
     combined_parts(std::span(&part, 1), scratch_set_, rough, true);
-    const double r = room(scratch_set_, rough);
+    const double r = rough && !reference_ ? rough_room() : room(scratch_set_, rough);
     rooms_alone_.emplace(key, r);
     return r;
   }
@@ -241,8 +241,19 @@ class evaluator {
       if (const auto it = column_rooms_.find(key); it != column_rooms_.end()) return it->second;
     }
     combine_into(index, scratch_set_, rough, true);
-    const double r = room(scratch_set_, rough);
+    const double r = rough && !reference_ ? rough_room() : room(scratch_set_, rough);
     rooms_.emplace(key, r);
+    return r;
+  }
+
+  /// The rough room of the set combined last (`room(…, true)`), remembered by its signs: the climb
+  /// meets many assignments whose combined collisions are the same samples (on the roundabout's
+  /// inputs a third to a half of them are distinct).
+  double rough_room() {
+    scratch_words_.assign(positive_.words().begin(), positive_.words().end());
+    if (const auto it = rough_rooms_.find(scratch_words_); it != rough_rooms_.end()) return it->second;
+    const double r = room(scratch_set_, true);
+    rough_rooms_.emplace(scratch_words_, r);
     return r;
   }
 
@@ -575,7 +586,9 @@ class evaluator {
   std::optional<clearance_set> road_reference_;  ///< reference: the road constraint's ±1, when it binds
   std::unordered_map<std::vector<std::size_t>, double, index_hash> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
   std::unordered_map<std::array<std::size_t, 3>, double, index_hash> rooms_alone_;  ///< `room_alone`, keyed by (j, i, rough)
-  std::unordered_map<std::vector<std::size_t>, double, index_hash> column_rooms_;  ///< the rooms of the map's column, keyed as `rooms_`
+  std::unordered_map<std::vector<std::size_t>, double, index_hash> column_rooms_;
+  std::unordered_map<std::vector<std::uint64_t>, double, index_hash> rough_rooms_;  ///< `rough_room`, keyed by the signs' words
+  std::vector<std::uint64_t> scratch_words_;  ///< the rooms of the map's column, keyed as `rooms_`
   static constexpr std::size_t rough_key = std::numeric_limits<std::size_t>::max();
   std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
   std::vector<std::size_t> scratch_key_;
