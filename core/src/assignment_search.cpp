@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <limits>
 #include <unordered_map>
+#include <vector>
 
-#include "index_hash.hpp"
 #include "mm/forecast_policy.hpp"
+#include "index_hash.hpp"
 
 namespace mm {
 

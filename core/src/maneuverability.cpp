@@ -1,9 +1,9 @@
 #include "mm/maneuverability.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 

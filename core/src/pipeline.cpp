@@ -8,10 +8,10 @@
 #include <functional>
 #include <initializer_list>
 #include <limits>
-#include <unordered_map>
 #include <optional>
 #include <span>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
