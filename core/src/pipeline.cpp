@@ -586,9 +586,9 @@ class evaluator {
   std::optional<clearance_set> road_reference_;  ///< reference: the road constraint's ±1, when it binds
   std::unordered_map<std::vector<std::size_t>, double, index_hash> rooms_;  ///< keyed by the assignment (and `rough_key` when rough)
   std::unordered_map<std::array<std::size_t, 3>, double, index_hash> rooms_alone_;  ///< `room_alone`, keyed by (j, i, rough)
-  std::unordered_map<std::vector<std::size_t>, double, index_hash> column_rooms_;
+  std::unordered_map<std::vector<std::size_t>, double, index_hash> column_rooms_;  ///< the rooms of the map's column, keyed as `rooms_`
   std::unordered_map<std::vector<std::uint64_t>, double, index_hash> rough_rooms_;  ///< `rough_room`, keyed by the signs' words
-  std::vector<std::uint64_t> scratch_words_;  ///< the rooms of the map's column, keyed as `rooms_`
+  std::vector<std::uint64_t> scratch_words_;  ///< scratch of `rough_room`: the key
   static constexpr std::size_t rough_key = std::numeric_limits<std::size_t>::max();
   std::vector<std::pair<std::size_t, std::size_t>> scratch_parts_;  ///< buffers kept between calls
   std::vector<std::size_t> scratch_key_;
